@@ -1,0 +1,403 @@
+"""Build the gripper (and its scenes) as a ``mujoco.MjSpec`` from :class:`GripperParams`.
+
+Structure of the generated model (names use ``f{k}_`` for finger k, elements 1-based as in
+paper 000, B1 = ``seg1`` fixed to the palm; hinge ``hinge{j}`` joins ``seg{j-1}`` and ``seg{j}``
+and carries spring M_j):
+
+- ``palm`` on slide joints ``lift_x``, ``lift_y`` (optional) and ``lift_z``, each driven by a
+  position actuator of the same name;
+- per finger, a ``mount`` frame (finger frame, see :mod:`gripper.geometry`), the element chain,
+  a ``reel`` body on a slide joint: the cable pulled onto the spool;
+- per finger, a spatial tendon ``f{k}_cable`` from the reel through a site at each hole mouth to
+  the tip anchor, limited to its straight-finger length: a rope (the limit is one-sided: it can
+  go slack and never pushes);
+- per finger, a ``dcmotor`` ``f{k}_servo`` on the reel joint with gear 1/spool radius, so the
+  actuator length is the spool angle [rad] and its force the shaft torque [N·m];
+- sensors: hinge angles, cable length and tension, servo angle and torque, pad touch forces.
+
+Example:
+    >>> import mujoco
+    >>> from gripper import GripperParams, build_gripper_spec
+    >>> model = build_gripper_spec(GripperParams()).compile()
+    >>> model.nu    # 4 servos + 3 lift axes
+    7
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from gripper.geometry import (
+    cable_line_z,
+    cable_via_points,
+    element_kind,
+    element_profile,
+    element_vertices,
+)
+from gripper.params import DEG, GripperParams
+
+MODEL_NAME = "soft_gripper"
+
+SILICONE_RGBA = (0.93, 0.93, 0.88, 1.0)
+PALM_RGBA = (0.25, 0.27, 0.30, 1.0)
+CABLE_RGBA = (0.85, 0.35, 0.10, 1.0)
+
+# Cable-reel body: a light drum carriage. Its inertia barely matters: the servo's reflected
+# rotor inertia (actuator armature / spool radius², ≈ 3.8 kg for the hobby preset) dominates.
+REEL_MASS = 1.0e-3  # kg
+# Distance from the palm face back to the cable guide and on to the reel, along the finger
+# axis inside the palm [m]: keeps via points apart so the tendon path is well defined.
+GUIDE_DEPTH = 0.004
+REEL_DEPTH = 0.010
+# Touch-pad sites: thickness of the sensing slab on each grasping face [m]; it must hold the
+# contact points of a few millimetres of penetration.
+PAD_HALF_THICKNESS = 0.0025
+# Cable (tendon) limit constraint: impedance at the limit. 0.99 keeps the rope's stretch small.
+CABLE_SOLIMP = (0.99, 0.99, 0.001, 0.5, 2.0)
+
+
+def finger_name(k: int) -> str:
+    return f"f{k}"
+
+
+@dataclass(frozen=True)
+class FingerNames:
+    """Names of one finger's elements in the model (for lookups by name)."""
+
+    prefix: str
+    n_segments: int
+
+    @property
+    def bodies(self) -> list[str]:
+        return [f"{self.prefix}_seg{j}" for j in range(1, self.n_segments + 1)]
+
+    @property
+    def hinges(self) -> list[str]:
+        return [f"{self.prefix}_hinge{j}" for j in range(2, self.n_segments + 1)]
+
+    @property
+    def pads(self) -> list[str]:
+        return [f"{self.prefix}_seg{j}_pad" for j in range(1, self.n_segments + 1)]
+
+    cable = property(lambda self: f"{self.prefix}_cable")
+    servo = property(lambda self: f"{self.prefix}_servo")
+    reel = property(lambda self: f"{self.prefix}_reel")
+    tip = property(lambda self: f"{self.prefix}_tip")
+    mount = property(lambda self: f"{self.prefix}_mount")
+
+
+def _add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.MjsDefault]:
+    """Menagerie-style default classes: root, visual, collision, hinge, pad."""
+    root = spec.add_default(MODEL_NAME, spec.default)
+    visual = spec.add_default("visual", root)
+    visual.geom.contype = 0
+    visual.geom.conaffinity = 0
+    visual.geom.group = 2
+    visual.geom.density = 0.0
+    collision = spec.add_default("collision", root)
+    collision.geom.group = 3
+    collision.geom.friction = [p.material.friction, 0.005, 1e-4]
+    collision.geom.density = p.material.density
+    collision.geom.rgba = [0.5, 0.6, 0.9, 0.4]
+    hinge = spec.add_default("hinge", root)
+    hinge.joint.type = mujoco.mjtJoint.mjJNT_HINGE
+    hinge.joint.axis = [0, -1, 0]  # positive angle closes the cut (curls towards +z)
+    hinge.joint.limited = mujoco.mjtLimited.mjLIMITED_TRUE
+    # Closed cut = silicone face on silicone face, far stiffer than the bridge: the stiffest
+    # limit MuJoCo integrates stably (time constant two steps, impedance 0.999), so the cable
+    # cannot pull a hinge past its closure (< 0.5° overrun at stall tension).
+    hinge.joint.solref_limit = [2.0 * p.sim.timestep, 1.0]
+    hinge.joint.solimp_limit = [0.999, 0.999, 0.001, 0.5, 2.0]
+    pad = spec.add_default("pad", root)
+    pad.site.type = mujoco.mjtGeom.mjGEOM_BOX
+    pad.site.group = 4
+    pad.site.rgba = [0.1, 0.8, 0.1, 0.3]
+    return {"root": root, "visual": visual, "collision": collision, "hinge": hinge, "pad": pad}
+
+
+def _add_element_meshes(spec: mujoco.MjSpec, p: GripperParams) -> None:
+    kinds = {element_kind(i, p.finger.n_segments) for i in range(p.finger.n_segments)}
+    for kind in sorted(kinds):
+        spec.add_mesh(name=f"element_{kind}",
+                      uservert=element_vertices(p.finger, kind).ravel().tolist())
+
+
+def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, prefix: str,
+               pos, quat, defaults: dict) -> FingerNames:
+    """Add one finger (mount frame, element chain, pads, cable sites, reel) under ``parent``.
+
+    ``pos``/``quat`` place the finger frame in ``parent``'s frame. Returns the names.
+    """
+    g = p.finger
+    names = FingerNames(prefix, g.n_segments)
+    stiff, damp, rest = p.springs.per_hinge(g.n_hinges)
+    zc = cable_line_z(g, p.cable)
+    mount = parent.add_body(name=names.mount, pos=list(pos), quat=list(quat))
+    mount.add_site(name=f"{prefix}_cable_guide", pos=[-GUIDE_DEPTH, 0, zc], size=[0.001] * 3)
+    reel = mount.add_body(name=names.reel, pos=[-REEL_DEPTH, 0, zc])
+    reel.mass = REEL_MASS
+    reel.inertia = [1e-8, 1e-8, 1e-8]
+    reel.explicitinertial = True
+    reel.add_joint(name=names.reel, type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[-1, 0, 0],
+                   limited=mujoco.mjtLimited.mjLIMITED_TRUE,
+                   range=[-0.002, p.servo.datasheet.travel * p.servo.spool_radius + 0.002])
+    reel.add_site(name=f"{prefix}_reel_site", size=[0.001] * 3)
+
+    body = mount
+    for i in range(g.n_segments):
+        kind = element_kind(i, g.n_segments)
+        j = i + 1
+        seg = body.add_body(name=f"{prefix}_seg{j}", pos=[g.pitch if i else 0.0, 0, 0])
+        if i > 0:
+            # Neighbours share the bridge; their contact is the joint limit (cut closing), so
+            # their convex hulls must not collide (MuJoCo's parent filter skips world-welded
+            # parents, so exclude explicitly).
+            spec.add_exclude(bodyname1=body.name, bodyname2=seg.name)
+            seg.add_joint(defaults["hinge"], name=f"{prefix}_hinge{j}", pos=[0, 0, g.hinge_z],
+                          range=[-g.extension_limit_deg * DEG, g.closure_angle_deg * DEG],
+                          stiffness=[stiff[i - 1], 0, 0], damping=[damp[i - 1], 0, 0],
+                          springref=rest[i - 1] * DEG)
+        seg.add_geom(defaults["visual"], name=f"{prefix}_seg{j}_visual",
+                     type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}",
+                     rgba=list(SILICONE_RGBA))
+        seg.add_geom(defaults["collision"], name=f"{prefix}_seg{j}_collision",
+                     type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}")
+        prof = element_profile(g, kind)
+        top = prof[np.isclose(prof[:, 1], g.height), 0]
+        x0, x1 = float(top.min()), float(top.max())
+        seg.add_site(defaults["pad"], name=f"{prefix}_seg{j}_pad",
+                     pos=[0.5 * (x0 + x1), 0, g.height],
+                     size=[0.5 * (x1 - x0), 0.5 * g.width, PAD_HALF_THICKNESS])
+        for role, x in cable_via_points(g, p.cable, kind):
+            name = f"{prefix}_tip_anchor" if role == "anchor" else f"{prefix}_seg{j}_cable"
+            seg.add_site(name=name, pos=[x, 0, zc], size=[0.0008] * 3)
+        if kind == "tip":
+            seg.add_site(name=names.tip, pos=[g.pitch, 0, g.hinge_z], size=[0.001] * 3)
+        body = seg
+    return names
+
+
+def straight_cable_length(p: GripperParams) -> float:
+    """Tendon length with the finger straight and the reel at zero [m] (collinear path)."""
+    return REEL_DEPTH + p.finger.length
+
+
+def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames) -> None:
+    """The cable tendon of one finger and the servo that reels it in, plus their sensors."""
+    g = p.finger
+    ten = spec.add_tendon(name=names.cable, width=0.5 * p.cable.diameter,
+                          rgba=list(CABLE_RGBA), frictionloss=p.cable.friction_loss,
+                          limited=mujoco.mjtLimited.mjLIMITED_TRUE,
+                          range=[0.0, straight_cable_length(p)])
+    ten.solimp_limit = list(CABLE_SOLIMP)
+    ten.wrap_site(f"{names.prefix}_reel_site")
+    ten.wrap_site(f"{names.prefix}_cable_guide")
+    for j in range(1, g.n_segments + 1):
+        kind = element_kind(j - 1, g.n_segments)
+        for role, _ in cable_via_points(g, p.cable, kind):
+            ten.wrap_site(f"{names.prefix}_tip_anchor" if role == "anchor"
+                          else f"{names.prefix}_seg{j}_cable")
+
+    ds = p.servo.datasheet
+    kp, kd = ds.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
+                         damping_ratio=p.servo.damping_ratio)
+    act = spec.add_actuator(name=names.servo, target=names.reel,
+                            trntype=mujoco.mjtTrn.mjTRN_JOINT)
+    act.set_to_dcmotor(motorconst=[0, 0], resistance=0,
+                       nominal=[ds.voltage, ds.stall_torque, ds.no_load_speed],
+                       controller=[kp, 0.0, kd, p.servo.slew_rate, 0.0, ds.voltage],
+                       ctrlspec=int(mujoco.mjtCtrlInput.mjINPUT_POS))
+    act.gear = [1.0 / p.servo.spool_radius, 0, 0, 0, 0, 0]
+    act.armature = ds.rotor_inertia
+    act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
+    act.ctrlrange = [0.0, ds.travel]
+
+    S = mujoco.mjtSensor
+    for h in names.hinges:
+        spec.add_sensor(name=f"{h}_angle", type=S.mjSENS_JOINTPOS, objname=h,
+                        objtype=mujoco.mjtObj.mjOBJ_JOINT)
+    spec.add_sensor(name=f"{names.cable}_length", type=S.mjSENS_TENDONPOS, objname=names.cable,
+                    objtype=mujoco.mjtObj.mjOBJ_TENDON)
+    spec.add_sensor(name=f"{names.cable}_tension", type=S.mjSENS_TENDONLIMITFRC,
+                    objname=names.cable, objtype=mujoco.mjtObj.mjOBJ_TENDON)
+    spec.add_sensor(name=f"{names.servo}_angle", type=S.mjSENS_ACTUATORPOS,
+                    objname=names.servo, objtype=mujoco.mjtObj.mjOBJ_ACTUATOR)
+    spec.add_sensor(name=f"{names.servo}_torque", type=S.mjSENS_ACTUATORFRC,
+                    objname=names.servo, objtype=mujoco.mjtObj.mjOBJ_ACTUATOR)
+    for pad in names.pads:
+        spec.add_sensor(name=pad, type=S.mjSENS_TOUCH, objname=pad,
+                        objtype=mujoco.mjtObj.mjOBJ_SITE)
+
+
+def tune_cable_stiffness(spec: mujoco.MjSpec, p: GripperParams) -> mujoco.MjModel:
+    """Set each cable limit's ``solref`` so the rope stretches like a cable of stiffness EA/L.
+
+    A MuJoCo limit with time constant tau, damping ratio 1 and impedance d behaves, for a slow
+    load, like a spring of stiffness k = 1 / (tau² (1-d) A), A being the tendon's inverse inertia
+    (``tendon_invweight0``). Solving for tau gives the cable's EA/L; tau is kept >= 2 time steps,
+    MuJoCo's stability floor (then the rope is softer than the real cable: documented in the
+    model README). Returns the compiled model.
+    """
+    model = spec.compile()
+    d = CABLE_SOLIMP[1]
+    for t in spec.tendons:
+        if not t.name.endswith("_cable"):
+            continue
+        tid = model.tendon(t.name).id
+        k = p.cable.axial_stiffness / straight_cable_length(p)
+        inv_w = float(model.tendon_invweight0[tid])
+        tau = 1.0 / math.sqrt(k * (1.0 - d) * inv_w)
+        t.solref_limit = [round(max(tau, 2.0 * p.sim.timestep), 6), 1.0]
+    return spec.compile()
+
+
+def _set_options(spec: mujoco.MjSpec, p: GripperParams) -> None:
+    spec.modelname = MODEL_NAME
+    spec.compiler.degree = False
+    spec.compiler.autolimits = True
+    spec.option.timestep = p.sim.timestep
+    spec.option.integrator = {
+        "euler": mujoco.mjtIntegrator.mjINT_EULER,
+        "implicit": mujoco.mjtIntegrator.mjINT_IMPLICIT,
+        "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST,
+        "rk4": mujoco.mjtIntegrator.mjINT_RK4,
+    }[p.sim.integrator]
+    spec.option.gravity = [0, 0, -p.sim.gravity]
+    spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
+    spec.option.impratio = 10  # stiff friction, as Menagerie grippers use, against object slip
+
+
+def finger_mount_pose(p: GripperParams, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """Position and quaternion of finger ``k``'s frame in the palm frame.
+
+    The palm frame has z up and its face at z = 0; finger x points down, the grasping face
+    (finger z) looks at the palm axis, fingers evenly spaced by azimuth 2πk/n.
+    """
+    phi = 2.0 * math.pi * k / p.layout.n_fingers
+    c, s = math.cos(phi), math.sin(phi)
+    radial = p.layout.palm_radius + p.finger.height
+    pos = np.array([radial * c, radial * s, 0.0])
+    rot = np.column_stack([[0, 0, -1], [s, -c, 0], [-c, -s, 0]]).astype(float)
+    tilt = p.layout.mount_tilt_deg * DEG
+    ry = np.array([[math.cos(tilt), 0, math.sin(tilt)], [0, 1, 0],
+                   [-math.sin(tilt), 0, math.cos(tilt)]])
+    quat = np.zeros(4)
+    mujoco.mju_mat2Quat(quat, (rot @ ry).ravel())
+    return pos, quat
+
+
+def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
+    """The gripper on its lift stage, no floor or object (see :func:`build_scene_spec`).
+
+    Raises:
+        ValueError: invalid parameters.
+    """
+    p.validate()
+    spec = mujoco.MjSpec()
+    _set_options(spec, p)
+    defaults = _add_defaults(spec, p)
+    _add_element_meshes(spec, p)
+
+    lift = p.lift
+    palm = spec.worldbody.add_body(name="palm", pos=[0, 0, lift.home_height])
+    # The stage's own controller holds the palm's weight (integral action of a real linear
+    # stage); the fingers keep their weight and sag under it.
+    palm.gravcomp = 1.0
+    axes = [("lift_x", [1, 0, 0]), ("lift_y", [0, 1, 0])] if lift.xy_enabled else []
+    axes.append(("lift_z", [0, 0, 1]))
+    for name, axis in axes:
+        travel = lift.z_travel if name == "lift_z" else lift.xy_travel
+        palm.add_joint(name=name, type=mujoco.mjtJoint.mjJNT_SLIDE, axis=axis,
+                       range=[-travel, travel], limited=mujoco.mjtLimited.mjLIMITED_TRUE,
+                       armature=0.0, damping=0.0)
+    radius = p.layout.palm_radius + p.finger.height + 0.004
+    palm.add_geom(defaults["visual"], name="palm_visual", type=mujoco.mjtGeom.mjGEOM_CYLINDER,
+                  size=[radius, 0.5 * p.layout.palm_thickness, 0],
+                  pos=[0, 0, 0.5 * p.layout.palm_thickness], rgba=list(PALM_RGBA))
+    palm.add_geom(defaults["collision"], name="palm_collision",
+                  type=mujoco.mjtGeom.mjGEOM_CYLINDER,
+                  size=[radius, 0.5 * p.layout.palm_thickness, 0],
+                  pos=[0, 0, 0.5 * p.layout.palm_thickness], mass=p.layout.palm_mass)
+    palm.add_site(name="palm_center", pos=[0, 0, 0], size=[0.002] * 3)
+    palm.add_camera(name="palm_cam", pos=[0, 0, -0.005], quat=[0, 1, 0, 0], fovy=90)
+
+    for k in range(p.layout.n_fingers):
+        pos, quat = finger_mount_pose(p, k)
+        names = add_finger(spec, palm, p, finger_name(k), pos, quat, defaults)
+        add_cable_drive(spec, p, names)
+
+    palm_mass_total = p.layout.palm_mass  # stage moves palm + fingers; gain uses the palm
+    for name, _ in axes:
+        act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+        act.set_to_position(kp=lift.stiffness,
+                            kv=2.0 * lift.damping_ratio * math.sqrt(lift.stiffness * palm_mass_total))
+        travel = lift.z_travel if name == "lift_z" else lift.xy_travel
+        act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
+        act.ctrlrange = [-travel, travel]
+        act.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
+        act.forcerange = [-lift.max_force, lift.max_force]
+        spec.add_sensor(name=f"{name}_pos", type=mujoco.mjtSensor.mjSENS_JOINTPOS,
+                        objname=name, objtype=mujoco.mjtObj.mjOBJ_JOINT)
+    spec.add_sensor(name="palm_pos", type=mujoco.mjtSensor.mjSENS_FRAMEPOS, objname="palm_center",
+                    objtype=mujoco.mjtObj.mjOBJ_SITE)
+    tune_cable_stiffness(spec, p)
+    return spec
+
+
+def build_scene_spec(p: GripperParams, *, with_object: bool = True) -> mujoco.MjSpec:
+    """Gripper plus floor, lights, cameras and (optionally) a rigid test block under the palm.
+
+    The test block is 40 × 40 × 60 mm, 60 g (a PLA-like part with infill), friction 0.8.
+    """
+    spec = build_gripper_spec(p)
+    spec.visual.global_.offwidth = 640
+    spec.visual.global_.offheight = 480
+    spec.visual.headlight.ambient = [0.4, 0.4, 0.4]
+    tex = spec.add_texture(name="grid", type=mujoco.mjtTexture.mjTEXTURE_2D,
+                           builtin=mujoco.mjtBuiltin.mjBUILTIN_CHECKER, width=256, height=256,
+                           rgb1=[0.32, 0.34, 0.38], rgb2=[0.26, 0.28, 0.31])
+    mat = spec.add_material(name="grid", texrepeat=[8, 8], reflectance=0.1)
+    mat.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = tex.name
+    spec.worldbody.add_light(name="key", pos=[0.3, -0.3, 0.8], dir=[-0.3, 0.3, -0.8],
+                             diffuse=[0.7, 0.7, 0.7])
+    spec.worldbody.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05],
+                            material="grid", friction=[0.8, 0.005, 1e-4])
+    spec.worldbody.add_camera(name="front", pos=[0, -0.45, 0.2], xyaxes=[1, 0, 0, 0, 0.3, 1])
+    spec.worldbody.add_camera(name="side", pos=[0.45, 0, 0.2], xyaxes=[0, 1, 0, -0.3, 0, 1])
+    if with_object:
+        obj = spec.worldbody.add_body(name="object", pos=[0, 0, 0.030])
+        obj.add_freejoint(name="object_free")
+        obj.add_geom(name="object_geom", type=mujoco.mjtGeom.mjGEOM_BOX,
+                     size=[0.020, 0.020, 0.030], mass=0.060, friction=[0.8, 0.005, 1e-4],
+                     rgba=[0.2, 0.5, 0.8, 1])
+    spec.compile()
+    return spec
+
+
+def build_bending_spec(p: GripperParams, *, timestep: float | None = None) -> mujoco.MjSpec:
+    """One finger clamped at B1 to the world, with its reel and servo: the paper's bending test.
+
+    The finger lies horizontal along world +x and bends in the horizontal plane (grasping face
+    towards +y, hinge axes vertical), so gravity loads the hinges' bearings, not their springs:
+    the test measures the cable-spring balance alone, as in paper 000 §IV.
+    """
+    p.validate()
+    if timestep is not None:
+        p = p.replace(sim=p.sim.replace(timestep=timestep))
+    spec = mujoco.MjSpec()
+    _set_options(spec, p)
+    spec.modelname = f"{MODEL_NAME}_bending"
+    defaults = _add_defaults(spec, p)
+    _add_element_meshes(spec, p)
+    quat = np.zeros(4)
+    rot = np.column_stack([[1, 0, 0], [0, 0, -1], [0, 1, 0]]).astype(float)
+    mujoco.mju_mat2Quat(quat, rot.ravel())
+    names = add_finger(spec, spec.worldbody, p, "f0", [0, 0, 0.1], quat, defaults)
+    add_cable_drive(spec, p, names)
+    spec.worldbody.add_camera(name="top", pos=[0.05, 0.03, 0.35], xyaxes=[1, 0, 0, 0, 1, 0])
+    tune_cable_stiffness(spec, p)
+    return spec
