@@ -139,9 +139,8 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
     mount = parent.add_body(name=names.mount, pos=list(pos), quat=list(quat))
     mount.add_site(name=f"{prefix}_cable_guide", pos=[-GUIDE_DEPTH, 0, zc], size=[0.001] * 3)
     reel = mount.add_body(name=names.reel, pos=[-REEL_DEPTH, 0, zc])
-    reel.mass = REEL_MASS
-    reel.inertia = [1e-8, 1e-8, 1e-8]
-    reel.explicitinertial = True
+    reel.add_geom(defaults["visual"], name=f"{prefix}_reel_drum", type=mujoco.mjtGeom.mjGEOM_SPHERE,
+                  size=[0.003, 0, 0], mass=REEL_MASS, rgba=list(CABLE_RGBA))
     reel.add_joint(name=names.reel, type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[-1, 0, 0],
                    limited=mujoco.mjtLimited.mjLIMITED_TRUE,
                    range=[-0.002, p.servo.datasheet.travel * p.servo.spool_radius + 0.002])
@@ -186,6 +185,29 @@ def straight_cable_length(p: GripperParams) -> float:
     return REEL_DEPTH + p.finger.length
 
 
+def add_servo(spec: mujoco.MjSpec, p: GripperParams, name: str, reel_joint: str) -> None:
+    """The servo as a MuJoCo ``dcmotor`` on the reel's slide joint.
+
+    Gear 1/spool radius makes the actuator length the spool angle [rad] and its force the output
+    torque [N·m] (cable tension = torque / spool radius). ``nominal`` = (supply voltage, stall
+    torque, no-load speed) from the datasheet; input ``pos`` with the on-board PD in torque
+    space, the drive voltage clamped to the supply (``Vmax``) and the set-point slewed at the
+    contraction speed (``slewmax``); the reflected rotor inertia is the actuator armature.
+    """
+    ds = p.servo.datasheet
+    kp, kd = ds.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
+                         damping_ratio=p.servo.damping_ratio)
+    act = spec.add_actuator(name=name, target=reel_joint, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+    act.set_to_dcmotor(motorconst=[0, 0], resistance=0,
+                       nominal=[ds.voltage, ds.stall_torque, ds.no_load_speed],
+                       controller=[kp, 0.0, kd, p.servo.slew_rate, 0.0, ds.voltage],
+                       ctrlspec=int(mujoco.mjtCtrlInput.mjINPUT_POS))
+    act.gear = [1.0 / p.servo.spool_radius, 0, 0, 0, 0, 0]
+    act.armature = ds.rotor_inertia
+    act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
+    act.ctrlrange = [0.0, ds.travel]
+
+
 def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames) -> None:
     """The cable tendon of one finger and the servo that reels it in, plus their sensors."""
     g = p.finger
@@ -202,19 +224,7 @@ def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames) -
             ten.wrap_site(f"{names.prefix}_tip_anchor" if role == "anchor"
                           else f"{names.prefix}_seg{j}_cable")
 
-    ds = p.servo.datasheet
-    kp, kd = ds.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
-                         damping_ratio=p.servo.damping_ratio)
-    act = spec.add_actuator(name=names.servo, target=names.reel,
-                            trntype=mujoco.mjtTrn.mjTRN_JOINT)
-    act.set_to_dcmotor(motorconst=[0, 0], resistance=0,
-                       nominal=[ds.voltage, ds.stall_torque, ds.no_load_speed],
-                       controller=[kp, 0.0, kd, p.servo.slew_rate, 0.0, ds.voltage],
-                       ctrlspec=int(mujoco.mjtCtrlInput.mjINPUT_POS))
-    act.gear = [1.0 / p.servo.spool_radius, 0, 0, 0, 0, 0]
-    act.armature = ds.rotor_inertia
-    act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
-    act.ctrlrange = [0.0, ds.travel]
+    add_servo(spec, p, names.servo, names.reel)
 
     S = mujoco.mjtSensor
     for h in names.hinges:

@@ -1,0 +1,144 @@
+"""The ``gripper`` command.
+
+Subcommands: ``bend`` (paper 000's bending test), ``servo`` (servo model against its
+datasheet), ``params`` (write the default parameter file), ``write-models`` (regenerate
+``models/soft_gripper``), ``check`` (step the scene under random servo commands).
+
+Errors in input (bad parameter, malformed file) print one line on stderr and exit with code 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+import numpy as np
+
+from gripper.params import GripperParams
+from gripper.stability import SimulationUnstable
+
+EXIT_BAD_INPUT = 2
+EXIT_UNSTABLE = 3
+
+
+def _params(args) -> GripperParams:
+    return GripperParams.load(args.params) if args.params else GripperParams().validate()
+
+
+def _cmd_bend(args) -> int:
+    from gripper.bending import BendingConfig, run_bending_test
+
+    cfg = BendingConfig(r_max=args.r_max, duration=args.duration, timestep=args.timestep,
+                        mode=args.mode, n_points=args.points)
+    res = run_bending_test(cfg, _params(args))
+    if args.json:
+        json.dump(res.to_json_dict(), sys.stdout)
+        sys.stdout.write("\n")
+        return 0
+    print(f"bending test ({cfg.mode}, {cfg.duration:g} s at {cfg.timestep:g} s step, "
+          f"wall {res.wall_time_s:.3f} s, {res.warnings} MuJoCo warnings)")
+    print(f"{'r':>7} {'tension N':>10} {'bend deg':>9}  tip x,y,z [mm]")
+    stride = max(1, len(res.r) // 10)
+    for i in list(range(0, len(res.r), stride)) + [len(res.r) - 1]:
+        tip = ", ".join(f"{v * 1e3:6.1f}" for v in res.tip_xyz_m[i])
+        print(f"{res.r[i]:7.3f} {res.tension_N[i]:10.3f} {res.bending_angle_deg[i]:9.2f}  {tip}")
+    return 0
+
+
+def _cmd_servo(args) -> int:
+    from gripper.servo_check import measure_servo
+
+    m = measure_servo(_params(args))
+    print(f"servo preset {m.datasheet.name}: {m.datasheet.description}")
+    print(f"{'figure':<24} {'model':>10} {'datasheet':>10} {'error':>8}")
+    for name, model, sheet in m.rows():
+        print(f"{name:<24} {model:10.4f} {sheet:10.4f} {100 * (model / sheet - 1):7.2f}%")
+    print(f"max cable tension: {m.max_cable_tension:.2f} N (stall torque / spool radius)")
+    return 0
+
+
+def _cmd_params(args) -> int:
+    path = _params(args).save(args.out)
+    print(f"wrote {path}")
+    return 0
+
+
+def _cmd_write_models(args) -> int:
+    from gripper.menagerie import REPO_MODELS, write_model_files
+
+    for path in write_model_files(args.out or REPO_MODELS, _params(args)):
+        print(f"wrote {path}")
+    return 0
+
+
+def _cmd_check(args) -> int:
+    from gripper.smoke import random_control_rollout
+
+    res = random_control_rollout(_params(args), duration=args.duration, seed=args.seed)
+    print(f"{res['steps']} steps, {res['sim_time_s']:.2f} s simulated in {res['wall_time_s']:.2f} "
+          f"s wall ({res['realtime_factor']:.1f}× real time), MuJoCo warnings: 0, state finite")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="gripper",
+        description="Simulate a four-finger cable-driven soft gripper in MuJoCo. "
+                    "All quantities in SI units unless a name says otherwise.")
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    def with_params(p):
+        p.add_argument("--params", metavar="FILE",
+                       help="gripper parameter file (.json or .toml); defaults if omitted")
+        return p
+
+    b = with_params(sub.add_parser(
+        "bend", help="paper 000's bending test of one finger",
+        description="Ramp the cable shortening rate r from 0 to r_max over the run (dynamic) or "
+                    "hold each of --points set-points until at rest (quasi_static); record "
+                    "hinge angles, bending angle, tip position and cable tension."))
+    b.add_argument("--json", action="store_true",
+                   help="print a JSON object with arrays r, tension_N, joint_angles_deg, "
+                        "bending_angle_deg, tip_xyz_m")
+    b.add_argument("--mode", choices=("dynamic", "quasi_static"), default="dynamic")
+    b.add_argument("--r-max", type=float, default=0.45, help="final shortening rate (default 0.45)")
+    b.add_argument("--duration", type=float, default=2.0, help="ramp time [s] (default 2)")
+    b.add_argument("--timestep", type=float, default=5e-4, help="step [s] (default 5e-4)")
+    b.add_argument("--points", type=int, default=101, help="samples or set-points (default 101)")
+    b.set_defaults(func=_cmd_bend)
+
+    s = with_params(sub.add_parser("servo", help="servo model against its datasheet"))
+    s.set_defaults(func=_cmd_servo)
+
+    p = with_params(sub.add_parser("params", help="write a parameter file (defaults or --params)"))
+    p.add_argument("--out", required=True, metavar="FILE", help=".json or .toml")
+    p.set_defaults(func=_cmd_params)
+
+    w = with_params(sub.add_parser("write-models", help="regenerate models/soft_gripper"))
+    w.add_argument("--out", metavar="DIR", help="output folder (default models/soft_gripper)")
+    w.set_defaults(func=_cmd_write_models)
+
+    c = with_params(sub.add_parser("check", help="step the scene under random servo commands"))
+    c.add_argument("--duration", type=float, default=2.0, help="simulated time [s]")
+    c.add_argument("--seed", type=int, default=0)
+    c.set_defaults(func=_cmd_check)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except ValueError as e:
+        print(f"gripper {args.command}: error: {e}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except SimulationUnstable as e:
+        print(f"gripper {args.command}: unstable simulation: {e}", file=sys.stderr)
+        return EXIT_UNSTABLE
+
+
+if __name__ == "__main__":  # pragma: no cover
+    np.set_printoptions(precision=4)
+    sys.exit(main())

@@ -1,0 +1,81 @@
+import json
+
+import numpy as np
+import pytest
+
+from gripper.bending import BendingConfig, run_bending_test
+from gripper.cli import main
+from gripper.params import GripperParams
+
+
+def _closing_design():
+    """30° cuts close (27.4° per hinge) well inside the servo's travel."""
+    p = GripperParams()
+    return p.replace(finger=p.finger.replace(cut_angle_deg=30.0))
+
+
+@pytest.fixture(scope="module", params=["dynamic", "quasi_static"])
+def closing_run(request):
+    p = _closing_design()
+    n = 201 if request.param == "dynamic" else 31
+    return p, run_bending_test(BendingConfig(mode=request.param, r_max=0.4, n_points=n), p)
+
+
+def test_straight_at_zero(closing_run):
+    _, res = closing_run
+    assert abs(res.r[0]) < 1e-9
+    assert np.abs(res.joint_angles_deg[0]).max() < 0.1
+
+
+def test_bending_monotonic_until_cuts_close(closing_run):
+    p, res = closing_run
+    closed = res.limit_active.all(axis=1)
+    first_closed = int(np.argmax(closed)) if closed.any() else len(closed)
+    assert first_closed > 5, "cuts should close only late in the sweep"
+    bend = res.bending_angle_deg[:first_closed]
+    assert np.all(np.diff(bend) > 0)
+    assert res.bending_angle_deg[first_closed - 1] > 100.0
+
+
+def test_hinge_limits_held(closing_run):
+    p, res = closing_run
+    limit = p.finger.closure_angle_deg
+    assert res.joint_angles_deg.max() <= limit + 0.5
+    assert res.joint_angles_deg.min() >= -p.finger.extension_limit_deg - 0.5
+    assert res.limit_active.any(), "the sweep should reach the closed cuts"
+
+
+def test_cable_never_pushes(closing_run):
+    _, res = closing_run
+    assert res.tension_N.min() >= 0.0
+    assert res.warnings == 0
+
+
+def test_quasi_static_moment_balance():
+    res = run_bending_test(BendingConfig(mode="quasi_static", r_max=0.4, n_points=17))
+    free = ~res.limit_active & (res.spring_moment_Nm > 1e-3)
+    assert free.sum() > 50
+    rel = np.abs(res.spring_moment_Nm - res.cable_moment_Nm)[free] / res.spring_moment_Nm[free]
+    assert rel.max() < 0.02
+
+
+def test_default_finger_bends_smoothly():
+    res = run_bending_test(BendingConfig(n_points=41))
+    assert np.all(np.diff(res.bending_angle_deg) > 0)
+    assert res.bending_angle_deg[-1] > 150.0
+    assert np.abs(res.tip_xyz_m[0] - [GripperParams().finger.length, 0, 0.0015]).max() < 1e-4
+
+
+def test_bend_cli_json(capsys):
+    assert main(["bend", "--json", "--points", "11"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    for key in ("r", "tension_N", "joint_angles_deg", "bending_angle_deg", "tip_xyz_m"):
+        assert len(out[key]) == 11
+    assert len(out["joint_angles_deg"][0]) == 5 and len(out["tip_xyz_m"][0]) == 3
+
+
+def test_bad_config():
+    with pytest.raises(ValueError, match="bend.r_max"):
+        BendingConfig(r_max=1.5).validate()
+    with pytest.raises(ValueError, match="bend.r_max"):
+        run_bending_test(BendingConfig(r_max=0.9))  # beyond the servo's travel
