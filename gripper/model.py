@@ -107,10 +107,11 @@ def _add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.Mjs
     hinge.joint.type = mujoco.mjtJoint.mjJNT_HINGE
     hinge.joint.axis = [0, -1, 0]  # positive angle closes the cut (curls towards +z)
     hinge.joint.limited = mujoco.mjtLimited.mjLIMITED_TRUE
-    # Closed cut = silicone face on silicone face, far stiffer than the bridge: the stiffest
-    # limit MuJoCo integrates stably (time constant two steps, impedance 0.999), so the cable
-    # cannot pull a hinge past its closure (< 0.5° overrun at stall tension).
-    hinge.joint.solref_limit = [2.0 * p.sim.timestep, 1.0]
+    # Closed cut = silicone face on silicone face, far stiffer than the bridge: a stiff limit
+    # (time constant four steps, impedance 0.999), so the cable cannot pull a hinge past its
+    # closure (< 0.5° overrun up to half the stall tension, 0.64° at stall). Two steps, MuJoCo's floor, diverged in the
+    # smoke test with 12-element fingers curled on themselves.
+    hinge.joint.solref_limit = [4.0 * p.sim.timestep, 1.0]
     hinge.joint.solimp_limit = [0.999, 0.999, 0.001, 0.5, 2.0]
     pad = spec.add_default("pad", root)
     pad.site.type = mujoco.mjtGeom.mjGEOM_BOX

@@ -1,0 +1,45 @@
+"""Speed figures (medians of several runs): the 2 s bending test, and the 4-finger gripper with
+a rigid block (scripted descend-close-lift, 3 s simulated) on one core.
+
+Run: .venv/bin/python scripts/bench_speed.py [--repeats 5]
+"""
+
+import argparse
+import statistics
+import time
+
+import mujoco
+
+from gripper.bending import BendingConfig, run_bending_test
+from gripper.model import build_scene_spec
+from gripper.params import GripperParams
+
+
+def grasp_rollout(p: GripperParams, sim_time: float = 3.0) -> float:
+    m = build_scene_spec(p).compile()
+    d = mujoco.MjData(m)
+    lift = m.actuator("lift_z").id
+    t0 = time.perf_counter()
+    while d.time < sim_time:
+        t = d.time
+        d.ctrl[: p.layout.n_fingers] = min(1.0, max(0.0, t - 1.0) * 2.0) * 2.0
+        d.ctrl[lift] = -0.12 * min(1.0, t) + (0.1 if t > 2.2 else 0.0)
+        mujoco.mj_step(m, d)
+    return sim_time / (time.perf_counter() - t0)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--repeats", type=int, default=5)
+    args = ap.parse_args()
+    bend = [run_bending_test(BendingConfig()).wall_time_s for _ in range(args.repeats)]
+    print(f"bending test, 2 s at 5e-4 s: median wall {statistics.median(bend):.4f} s "
+          f"(runs: {', '.join(f'{x:.4f}' for x in bend)})")
+    p = GripperParams()
+    rt = [grasp_rollout(p) for _ in range(args.repeats)]
+    print(f"4-finger gripper + rigid block, dt {p.sim.timestep:g} s: median "
+          f"{statistics.median(rt):.1f}x real time (runs: {', '.join(f'{x:.1f}' for x in rt)})")
+
+
+if __name__ == "__main__":
+    main()
