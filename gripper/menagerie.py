@@ -12,7 +12,6 @@ Example:
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 from gripper.model import build_gripper_spec, build_scene_spec
@@ -94,5 +93,4 @@ def write_model_files(out_dir: str | Path = REPO_MODELS,
     return written
 
 
-__all__ = ["generate_model_files", "write_model_files", "parameter_table", "readme_with_table",
-           "dataclasses"]
+__all__ = ["generate_model_files", "write_model_files", "parameter_table", "readme_with_table"]
