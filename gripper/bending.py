@@ -128,6 +128,7 @@ class _Probe:
         self.hinge_dof = np.array([model.joint(h).dofadr[0] for h in self.names.hinges])
         self.hinge_ids = np.array([model.joint(h).id for h in self.names.hinges])
         self.reel_qpos = model.joint(self.names.reel).qposadr[0]
+        self.reel_dof = model.joint(self.names.reel).dofadr[0]
         self.tension = model.sensor(f"{self.names.cable}_tension").adr[0]
         self.tip_site = model.site(self.names.tip).id
         self.cable_id = model.tendon(self.names.cable).id
@@ -197,7 +198,7 @@ def run_bending_test(config: BendingConfig | None = None,
                 for _ in range(50):
                     mujoco.mj_step(model, data)
                 check_stable(model, data, "bending test (quasi-static)")
-                reel_v = data.qvel[model.joint(probe.names.reel).dofadr[0]] / probe.cable_length0
+                reel_v = data.qvel[probe.reel_dof] / probe.cable_length0
                 at_rest = max(np.abs(data.qvel[dofs]).max(), abs(reel_v)) < cfg.settle_tol
                 if at_rest and data.time - t_start > 0.05:
                     break

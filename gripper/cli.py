@@ -13,8 +13,6 @@ import argparse
 import json
 import sys
 
-import numpy as np
-
 from gripper.params import GripperParams
 from gripper.stability import SimulationUnstable
 
@@ -140,5 +138,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":  # pragma: no cover
-    np.set_printoptions(precision=4)
     sys.exit(main())

@@ -16,12 +16,11 @@ Example:
 
 from __future__ import annotations
 
-import math
 from typing import Literal
 
 import numpy as np
 
-from gripper.params import DEG, Cable, FingerGeometry
+from gripper.params import Cable, FingerGeometry
 
 ElementKind = Literal["base", "middle", "tip"]
 
@@ -72,11 +71,6 @@ def cable_line_z(g: FingerGeometry, cable: Cable) -> float:
     return g.hole_height
 
 
-def cut_half_width_at(g: FingerGeometry, z: float) -> float:
-    """Half-width of a cut at height ``z`` [m] (zero at and below the bridge top)."""
-    return max(0.0, z - g.bridge_thickness) * math.tan(0.5 * g.cut_angle_deg * DEG)
-
-
 def cable_via_points(g: FingerGeometry, cable: Cable, kind: ElementKind) -> list[tuple[str, float]]:
     """Cable via points of one element as (role, x) at height :func:`cable_line_z`.
 
@@ -88,16 +82,3 @@ def cable_via_points(g: FingerGeometry, cable: Cable, kind: ElementKind) -> list
     if kind == "tip":
         pts.append(("anchor", g.pitch))
     return pts
-
-
-def moment_arm_straight(g: FingerGeometry, cable: Cable) -> float:
-    """Lever arm of the cable about a hinge axis with the finger straight [m]."""
-    return cable_line_z(g, cable) - g.hinge_z
-
-
-def element_volume(g: FingerGeometry, kind: ElementKind) -> float:
-    """Volume of one element [m³] (shoelace area of the profile × width; holes neglected)."""
-    prof = element_profile(g, kind)
-    x, z = prof[:, 0], prof[:, 1]
-    area = 0.5 * abs(np.dot(x, np.roll(z, -1)) - np.dot(z, np.roll(x, -1)))
-    return float(area * g.width)

@@ -26,7 +26,7 @@ _UNITS = {
     "extension_limit_deg": "deg", "density": "kg/m³", "youngs_modulus": "Pa",
     "poisson_ratio": "-", "shore_a": "Shore A", "tensile_strength": "Pa",
     "elongation_at_break": "-", "yeoh_c10": "Pa", "yeoh_c20": "Pa", "yeoh_c30": "Pa",
-    "friction": "-", "stiffness": "N·m/rad (lift: N/m)", "damping": "N·m·s/rad",
+    "friction": "-", "stiffness": "N·m/rad", "damping": "N·m·s/rad",
     "rest_angle_deg": "deg", "diameter": "m", "friction_loss": "N", "preset": "-",
     "spool_radius": "m", "saturation_error_deg": "deg", "damping_ratio": "-",
     "contraction_speed": "m/s", "n_fingers": "-", "palm_radius": "m", "palm_thickness": "m",
@@ -34,6 +34,7 @@ _UNITS = {
     "xy_travel": "m", "max_force": "N", "home_height": "m", "timestep": "s",
     "integrator": "-", "gravity": "m/s²",
 }
+_UNIT_OVERRIDES = {("lift", "stiffness"): "N/m"}  # same field name, other section's unit
 
 
 def generate_model_files(params: GripperParams | None = None) -> dict[str, str]:
@@ -51,11 +52,7 @@ def parameter_table(params: GripperParams | None = None) -> str:
     lines = ["| section | field | value | unit |", "|---|---|---|---|"]
     for section, values in p.to_dict().items():
         for key, value in values.items():
-            unit = _UNITS.get(key, "-")
-            if section == "lift" and key == "stiffness":
-                unit = "N/m"
-            if section == "cable" and key == "youngs_modulus":
-                unit = "Pa"
+            unit = _UNIT_OVERRIDES.get((section, key), _UNITS.get(key, "-"))
             lines.append(f"| {section} | {key} | {value} | {unit} |")
     derived = [
         ("finger", "closure_angle_deg", f"{p.finger.closure_angle_deg:.2f}", "deg"),

@@ -109,8 +109,8 @@ def _add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.Mjs
     hinge.joint.limited = mujoco.mjtLimited.mjLIMITED_TRUE
     # Closed cut = silicone face on silicone face, far stiffer than the bridge: a stiff limit
     # (time constant four steps, impedance 0.999), so the cable cannot pull a hinge past its
-    # closure (< 0.5° overrun up to half the stall tension, 0.64° at stall). Two steps, MuJoCo's floor, diverged in the
-    # smoke test with 12-element fingers curled on themselves.
+    # closure (< 0.5° overrun up to half the stall tension, 0.64° at stall). Two steps,
+    # MuJoCo's floor, diverged in the smoke test with 12-element fingers curled on themselves.
     hinge.joint.solref_limit = [4.0 * p.sim.timestep, 1.0]
     hinge.joint.solimp_limit = [0.999, 0.999, 0.001, 0.5, 2.0]
     pad = spec.add_default("pad", root)
@@ -244,14 +244,14 @@ def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames) -
                         objtype=mujoco.mjtObj.mjOBJ_SITE)
 
 
-def tune_cable_stiffness(spec: mujoco.MjSpec, p: GripperParams) -> mujoco.MjModel:
+def tune_cable_stiffness(spec: mujoco.MjSpec, p: GripperParams) -> None:
     """Set each cable limit's ``solref`` so the rope stretches like a cable of stiffness EA/L.
 
     A MuJoCo limit with time constant tau, damping ratio 1 and impedance d behaves, for a slow
     load, like a spring of stiffness k = 1 / (tau² (1-d) A), A being the tendon's inverse inertia
     (``tendon_invweight0``). Solving for tau gives the cable's EA/L; tau is kept >= 2 time steps,
     MuJoCo's stability floor (then the rope is softer than the real cable: documented in the
-    model README). Returns the compiled model.
+    model README). Compiles once to read the inverse inertias; edits ``spec`` in place.
     """
     model = spec.compile()
     d = CABLE_SOLIMP[1]
@@ -263,7 +263,6 @@ def tune_cable_stiffness(spec: mujoco.MjSpec, p: GripperParams) -> mujoco.MjMode
         inv_w = float(model.tendon_invweight0[tid])
         tau = 1.0 / math.sqrt(k * (1.0 - d) * inv_w)
         t.solref_limit = [round(max(tau, 2.0 * p.sim.timestep), 6), 1.0]
-    return spec.compile()
 
 
 def _set_options(spec: mujoco.MjSpec, p: GripperParams) -> None:
@@ -341,11 +340,10 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
         names = add_finger(spec, palm, p, finger_name(k), pos, quat, defaults)
         add_cable_drive(spec, p, names)
 
-    palm_mass_total = p.layout.palm_mass  # stage moves palm + fingers; gain uses the palm
     for name, _ in axes:
         act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
         act.set_to_position(kp=lift.stiffness,
-                            kv=2.0 * lift.damping_ratio * math.sqrt(lift.stiffness * palm_mass_total))
+                            kv=2.0 * lift.damping_ratio * math.sqrt(lift.stiffness * p.layout.palm_mass))
         travel = lift.z_travel if name == "lift_z" else lift.xy_travel
         act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
         act.ctrlrange = [-travel, travel]
@@ -385,7 +383,6 @@ def build_scene_spec(p: GripperParams, *, with_object: bool = True) -> mujoco.Mj
         obj.add_geom(name="object_geom", type=mujoco.mjtGeom.mjGEOM_BOX,
                      size=[0.020, 0.020, 0.030], mass=0.060, friction=[0.8, 0.005, 1e-4],
                      rgba=[0.2, 0.5, 0.8, 1])
-    spec.compile()
     return spec
 
 

@@ -68,28 +68,27 @@ def measure_servo(p: GripperParams) -> ServoMeasurement:
     p = p.validate()
     ds = p.servo.datasheet
 
-    m = _servo_model(p, locked=False)
-    d = mujoco.MjData(m)
+    free = _servo_model(p, locked=False)
+    d = mujoco.MjData(free)
     d.ctrl[0] = ds.travel
     speed = 0.0
     while d.time < 0.5 and d.actuator_length[0] < 0.9 * ds.travel:
-        mujoco.mj_step(m, d)
+        mujoco.mj_step(free, d)
         speed = max(speed, float(d.actuator_velocity[0]))
 
-    m = _servo_model(p, locked=True)
-    d = mujoco.MjData(m)
+    locked = _servo_model(p, locked=True)
+    d = mujoco.MjData(locked)
     d.ctrl[0] = 0.5 * ds.travel
     for _ in range(2000):
-        mujoco.mj_step(m, d)
+        mujoco.mj_step(locked, d)
     stall = abs(float(d.actuator_force[0]))
 
-    m = _servo_model(p, locked=False)
-    d = mujoco.MjData(m)
+    d = mujoco.MjData(free)
     target = math.pi / 3
     d.ctrl[0] = target
     t_done = math.nan
     while d.time < 10 * ds.step_60deg_time:
-        mujoco.mj_step(m, d)
+        mujoco.mj_step(free, d)
         if abs(d.actuator_length[0] - target) < STEP_TOLERANCE_DEG * DEG:
             t_done = float(d.time)
             break
