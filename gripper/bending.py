@@ -35,8 +35,8 @@ class BendingConfig:
     """Settings of a bending test.
 
     Attributes:
-        r_max: final cable shortening rate [-]. Default 0.45: about where the five default cuts
-            close (bending ≈ 225°), inside the hobby servo's 180° travel (r ≤ 0.49).
+        r_max: final cable shortening rate [-]. Default 0.45: the five default cuts close at
+            r ≈ 0.44 (bending ≈ 206°), inside the hobby servo's 180° travel (r <= 0.65).
         duration: ramp duration of the dynamic mode [s] (paper 000 §IV: 2 s).
         timestep: simulation step [s] (paper 000 §IV: 5e-4 s).
         mode: "dynamic" (one ramp) or "quasi_static" (hold each point until at rest).
