@@ -149,7 +149,7 @@ def _executor(workers: int, scheduler: str | None):
         client = Client(scheduler)
         return client, client.close, True
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                           dashboard_address=None)
+                           dashboard_address=":0")
     client = Client(cluster)
 
     def close():

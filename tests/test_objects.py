@@ -1,0 +1,63 @@
+"""Object library, user meshes and the Wilson interval."""
+
+import math
+
+import pytest
+import trimesh
+
+from gripper.bench import wilson_interval
+from gripper.objects import DEFAULT_OBJECTS, LIBRARY, get_object, mesh_object
+from gripper.params import GripperParams
+
+
+def test_library_fits_the_aperture_with_placement_noise():
+    # straight-finger faces stand palm_radius from the axis; trials offset objects by 10 mm
+    aperture = GripperParams().layout.palm_radius
+    for obj in LIBRARY.values():
+        obj.validate()
+        assert obj.half_width + 0.010 < aperture, obj.name
+        assert obj.height < GripperParams().finger.length, obj.name
+
+
+def test_default_objects_are_the_five_named():
+    assert set(DEFAULT_OBJECTS) == {"balloon", "block", "cylinder", "paper_box", "bag"}
+
+
+def test_unknown_object_is_refused_naming_the_allowed():
+    with pytest.raises(ValueError, match="unknown object 'sphere'.*balloon"):
+        get_object("sphere")
+
+
+def test_mesh_mass_from_density_and_volume(tmp_path):
+    path = tmp_path / "part.stl"
+    trimesh.creation.box(extents=(0.03, 0.03, 0.05)).export(path)
+    obj = mesh_object(path)
+    assert math.isclose(obj.mass, 620.0 * 0.03 * 0.03 * 0.05, rel_tol=1e-6)
+    assert obj.size == pytest.approx((0.015, 0.015, 0.025))
+    assert mesh_object(path, mass=0.1).mass == 0.1
+    assert get_object(f"mesh:{path}").kind == "mesh"
+
+
+def test_open_mesh_is_refused(tmp_path):
+    path = tmp_path / "sheet.stl"
+    trimesh.Trimesh(vertices=[[0, 0, 0], [0.02, 0, 0], [0, 0.02, 0], [0.02, 0.02, 0.001]],
+                    faces=[[0, 1, 2], [1, 3, 2]]).export(path)
+    with pytest.raises(ValueError, match="not watertight"):
+        mesh_object(path)
+
+
+def test_unreadable_mesh_is_refused(tmp_path):
+    path = tmp_path / "junk.stl"
+    path.write_bytes(b"\x00\x01not a mesh")
+    with pytest.raises(ValueError, match="mesh"):
+        mesh_object(path)
+    with pytest.raises(ValueError, match="not found"):
+        mesh_object(tmp_path / "missing.obj")
+
+
+def test_wilson_interval_known_values():
+    # Wilson 95 % interval for 8/10: 0.4902-0.9433 (Newcombe 1998, Table I method 3 style)
+    lo, hi = wilson_interval(8, 10)
+    assert lo == pytest.approx(0.4902, abs=1e-4) and hi == pytest.approx(0.9433, abs=1e-4)
+    lo, hi = wilson_interval(50, 50)
+    assert hi == pytest.approx(1.0) and lo == pytest.approx(0.9287, abs=1e-4)
