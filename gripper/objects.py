@@ -122,10 +122,9 @@ class GraspObject:
 # flat plate to depth δ its contact force is F ≈ Δp · 2πRδ (flattened cap area), i.e. a
 # stiffness 2πRΔp. Small latex balloons run at Δp ≈ 2-4 kPa (the pressure maximum of the
 # balloon's inflation curve); 3 kPa at R = 0.028 m gives ≈ 530 N/m. The balloon is a 3D flex
-# (tetrahedra to its centre) whose effective Young's modulus E is chosen so that a sphere of
-# radius R compressed between plates has the same initial stiffness: for a solid sphere
-# F ≈ (E/(1-ν²)) R^(1/2) δ^(3/2)... that Hertz law is not linear, so E is set from the
-# test in tests/test_objects.py (plate compression gives 2πRΔp within a factor 2 at δ = 5 mm).
+# (tetrahedra to its centre, trilinear dofs) with an effective Young's modulus of 50 kPa, an
+# assumption: pressed by a free plate on the floor it gives ≈ 570 N/m between 1 N and 2 N
+# (4-9 mm of compression), near the 530 N/m estimate; below 1 N the coarse flex is softer.
 # Burst: latex tears at an elongation of 700-800 % (stretch ≈ 8); an inflated balloon already
 # runs at stretch ≈ 3-4, and stress concentrates where a finger edge presses. We count a burst
 # when any surface edge of the flex stretches more than 25 % beyond its inflated length, a
@@ -158,10 +157,10 @@ CYLINDER = GraspObject(
     yaw_symmetric=True, close_command=RIGID_CLOSE, damage_limit=200.0,
     damage_measure="peak total contact force [N]")
 
-# Paper box: a 40 × 40 × 60 mm box of 250 g/m² folding card (≈ 0.3 mm thick, in-plane modulus
+# Paper box: a 40 × 40 × 60 mm box of ≈ 170 g/m² card (≈ 0.2 mm thick, in-plane modulus
 # ≈ 3 GPa; paperboard 2-6 GPa). MuJoCo's flexcomp box shell has an open top, so this is a box
 # with its lid open; 20 g total (card ≈ 3 g plus light contents, lumped on the shell's vertices).
-# Card yields at a bending strain of ≈ 0.4 % (paperboard's elastic limit 0.3-0.5 %), leaving a
+# Card yields at a bending strain of ≈ 0.3 % (paperboard's elastic limit 0.3-0.5 %), leaving a
 # crease. Damage = a permanent dent deeper than 2 mm (a dent a customer sees on a retail box),
 # measured after elastic spring-back (see grasp_metrics.permanent_dent).
 PAPER_BOX = GraspObject(
