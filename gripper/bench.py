@@ -25,7 +25,6 @@ Example:
 from __future__ import annotations
 
 import csv
-import dataclasses
 import json
 import math
 import os
@@ -274,7 +273,3 @@ def format_table(summary: dict) -> str:
     lines.append(f"config {summary['config_hash']}  wall {summary['wall_time_s']:.1f} s  "
                  f"mujoco {summary['versions']['mujoco']}")
     return "\n".join(lines)
-
-
-def replace_config(cfg: BenchConfig, **changes) -> BenchConfig:
-    return dataclasses.replace(cfg, **changes)

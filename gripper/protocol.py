@@ -12,16 +12,14 @@ Example:
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 from typing import Any
 
+from gripper.params import _between
+
 
 def _check(name: str, value: Any, lo: float, hi: float) -> None:
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise ValueError(f"{name}: expected a finite number, got {value!r}")
-    if not lo <= value <= hi:
-        raise ValueError(f"{name}: must be in [{lo:g}, {hi:g}], got {value!r}")
+    _between(name, value, lo, hi, closed=True)
 
 
 @dataclass(frozen=True)

@@ -137,8 +137,9 @@ class _Probe:
             return out
         c = d.contact
         geom, flex, adr = c.geom, c.flex, c.efc_address
-        obj = self.object_geom[geom].any(axis=1) | (flex == self.flex).any(axis=1) if self.flex >= 0 \
-            else self.object_geom[geom].any(axis=1)
+        obj = self.object_geom[geom].any(axis=1)
+        if self.flex >= 0:
+            obj |= (flex == self.flex).any(axis=1)
         fing = np.max(self.geom_finger[geom], axis=1)
         use = obj & (fing >= 0) & (adr >= 0)
         if use.any():
