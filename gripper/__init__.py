@@ -4,7 +4,16 @@ Example:
     >>> from gripper import GripperParams, run_trial
     >>> rec = run_trial("block", seed=0, index=0, params=GripperParams())   # doctest: +SKIP
     >>> rec["success"], rec["peak_cable_tension_N"]                         # doctest: +SKIP
+
+The Gymnasium environment ``SoftGripperGrasp-v0`` is registered on import:
+
+    >>> import gymnasium as gym
+    >>> env = gym.make("gripper:SoftGripperGrasp-v0", objects="block")   # doctest: +SKIP
 """
+from gripper.render import choose_gl_backend
+
+choose_gl_backend()  # before anything imports mujoco: headless EGL unless MUJOCO_GL is set
+
 from gripper.bench import BenchConfig, run_benchmark, wilson_interval
 from gripper.model import build_bending_spec, build_gripper_spec, build_scene_spec
 from gripper.objects import GraspObject, Placement, get_object, mesh_object
@@ -16,3 +25,16 @@ __all__ = ["GripperParams", "build_gripper_spec", "build_scene_spec", "build_ben
            "GraspObject", "Placement", "get_object", "mesh_object", "GraspProtocol", "TrialNoise",
            "run_trial", "run_pullout", "BenchConfig", "run_benchmark", "wilson_interval"]
 __version__ = "0.1.0"
+
+
+def _register_envs() -> None:
+    import gymnasium
+
+    if "SoftGripperGrasp-v0" not in gymnasium.registry:
+        gymnasium.register(
+            id="SoftGripperGrasp-v0", entry_point="gripper.env:SoftGripperGraspEnv",
+            vector_entry_point="gripper.vector_env:SoftGripperGraspVectorEnv",
+            max_episode_steps=300)
+
+
+_register_envs()

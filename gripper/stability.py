@@ -31,9 +31,11 @@ def check_stable(model: mujoco.MjModel, data: mujoco.MjData, what: str) -> None:
     Raises:
         SimulationUnstable: naming ``what``, the time and the warnings seen.
     """
-    warns = warning_counts(data)
     finite = (np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all()
               and np.isfinite(data.act).all())
+    if finite and not data.warning.number.any():  # fast path: one vector read, no per-warning loop
+        return
+    warns = warning_counts(data)
     if warns or not finite:
         detail = ", ".join(f"{k}×{v}" for k, v in warns.items()) or "non-finite state"
         raise SimulationUnstable(f"{what}: unstable at t = {data.time:.4f} s ({detail})")

@@ -31,16 +31,16 @@ def main() -> None:
         ratios, runner, plain = [], [], []
         for _ in range(args.repeats):
             controls = []
-            real_rollout = T.rollout.rollout
+            real_step = T._Stepper.step
 
-            def spy(m, d, state, u, controls=controls, real_rollout=real_rollout, **kw):
-                controls.append(np.array(u[0]))
-                return real_rollout(m, d, state, u, **kw)
-            T.rollout.rollout = spy
+            def spy(self, u, controls=controls, real_step=real_step):
+                controls.append(np.array(u))
+                return real_step(self, u)
+            T._Stepper.step = spy
             t0 = time.perf_counter()
             rec = T.run_trial(obj, 0, 0, protocol=proto)
             t_runner = time.perf_counter() - t0
-            T.rollout.rollout = real_rollout
+            T._Stepper.step = real_step
             p = GripperParams()
             p = p.replace(sim=p.sim.replace(timestep=proto.timestep))
             u = np.concatenate(controls)

@@ -1,0 +1,131 @@
+"""Headless offscreen rendering of gripper scenes: camera presets and one reusable renderer.
+
+The OpenGL backend is chosen in ``gripper/__init__.py`` before MuJoCo is imported (see
+:func:`choose_gl_backend`): ``MUJOCO_GL`` if the user set it, else ``egl`` (software Mesa EGL
+works with no display and no GPU), else ``osmesa`` where only that library is installed.
+
+Example:
+    >>> from gripper.render import SceneRenderer                      # doctest: +SKIP
+    >>> r = SceneRenderer(model, width=640, height=480, camera="front")  # doctest: +SKIP
+    >>> rgb = r.render(data)                                           # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import ctypes.util
+import os
+from dataclasses import dataclass
+
+# Presets. "front" and "side" are the scene's own fixed cameras, "palm" looks down from the palm
+# at the object; "top" and "track" are free cameras set here (no change to the committed model):
+# "track" follows the palm body at a three-quarter view.
+CAMERAS = ("front", "side", "top", "track", "palm")
+_MODEL_CAMERAS = {"front": "front", "side": "side", "palm": "palm_cam"}
+
+
+@dataclass(frozen=True)
+class _FreeView:
+    lookat: tuple[float, float, float]
+    distance: float
+    azimuth: float
+    elevation: float
+
+
+# "top": straight down on the grasp site from 0.5 m; "track": 0.45 m from the palm, 35° down.
+_FREE = {"top": _FreeView((0.0, 0.0, 0.05), 0.5, 90.0, -89.0),
+         "track": _FreeView((0.0, 0.0, 0.0), 0.45, 135.0, -35.0)}
+
+
+def choose_gl_backend() -> str | None:
+    """Set ``MUJOCO_GL`` unless the user did: ``egl`` if libEGL is installed, else ``osmesa`` if
+    libOSMesa is, else leave it unset (rendering then fails with :func:`gl_error`'s message).
+    Must run before ``import mujoco``; returns the value in effect."""
+    if "MUJOCO_GL" not in os.environ:
+        if ctypes.util.find_library("EGL"):
+            os.environ["MUJOCO_GL"] = "egl"
+        elif ctypes.util.find_library("OSMesa"):
+            os.environ["MUJOCO_GL"] = "osmesa"
+            os.environ.setdefault("PYOPENGL_PLATFORM", "osmesa")
+    return os.environ.get("MUJOCO_GL")
+
+
+def gl_error(err: Exception) -> RuntimeError:
+    backend = os.environ.get("MUJOCO_GL", "(unset)")
+    return RuntimeError(
+        f"render: cannot start an OpenGL context with MUJOCO_GL={backend} ({err}). Headless rendering "
+        "needs Mesa EGL (Debian: apt install libegl1 libgl1-mesa-dri) or OSMesa (apt install "
+        "libosmesa6, then MUJOCO_GL=osmesa); set MUJOCO_GL before starting Python.")
+
+
+class SceneRenderer:
+    """One ``mujoco.Renderer`` for a model, reused for every frame.
+
+    Args:
+        model: the compiled model.
+        width, height: image size [px]; the model's offscreen buffer is enlarged if needed.
+        camera: one of :data:`CAMERAS`.
+
+    Raises:
+        ValueError: unknown camera or a bad size (one line naming the argument).
+        RuntimeError: no OpenGL context could be started (says what to install).
+    """
+
+    def __init__(self, model, *, width: int = 640, height: int = 480, camera: str = "front"):
+        import mujoco
+
+        if camera not in CAMERAS:
+            raise ValueError(f"camera: unknown camera {camera!r}; allowed: {', '.join(CAMERAS)}")
+        for name, v in (("width", width), ("height", height)):
+            if not isinstance(v, int) or not 16 <= v <= 4096:
+                raise ValueError(f"{name}: must be an integer in [16, 4096] pixels, got {v!r}")
+        self.model = model
+        # the offscreen framebuffer must hold the image: raise it for this model when needed
+        model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
+        model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+        try:
+            self._r = mujoco.Renderer(model, height=height, width=width)
+        except Exception as e:  # the GL backends raise many types
+            raise gl_error(e) from None
+        self.camera = camera
+        if camera in _MODEL_CAMERAS:
+            self._cam = _MODEL_CAMERAS[camera]
+        else:
+            v = _FREE[camera]
+            cam = mujoco.MjvCamera()
+            cam.lookat[:] = v.lookat
+            cam.distance, cam.azimuth, cam.elevation = v.distance, v.azimuth, v.elevation
+            if camera == "track":
+                cam.type = mujoco.mjtCamera.mjCAMERA_TRACKING
+                cam.trackbodyid = model.body("palm").id
+            else:
+                cam.type = mujoco.mjtCamera.mjCAMERA_FREE
+            self._cam = cam
+        self.width, self.height = width, height
+
+    def render(self, data, *, depth: bool = False, segmentation: bool = False):
+        """RGB (h, w, 3) uint8, or depth (h, w) float32 [m], or segmentation (h, w, 2) int32
+        (object id, object type) of ``data``'s current state."""
+        r = self._r
+        if depth:
+            r.enable_depth_rendering()
+        elif segmentation:
+            r.enable_segmentation_rendering()
+        try:
+            r.update_scene(data, camera=self._cam)
+            return r.render()
+        finally:
+            r.disable_depth_rendering()
+            r.disable_segmentation_rendering()
+
+    def close(self) -> None:
+        self._r.close()
+
+
+def open_viewer(model, data):
+    """MuJoCo's passive viewer for ``render_mode="human"``; needs a display."""
+    if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+        raise RuntimeError("render_mode='human': no display (DISPLAY is not set); use 'rgb_array' "
+                           "for headless rendering")
+    import mujoco.viewer
+
+    return mujoco.viewer.launch_passive(model, data)

@@ -1,0 +1,178 @@
+"""Gymnasium environment: API checks, determinism, vector env equality, docs, bad input."""
+
+import pickle
+import re
+import warnings
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import gripper  # noqa: F401  (registers the environment)
+from gripper.env import SoftGripperGraspEnv
+
+ENV_ID = "gripper:SoftGripperGrasp-v0"
+
+# Warnings check_env may raise, each with its reason:
+ALLOWED_WARNINGS = (
+    # the observation holds unbounded physical quantities (velocities, forces), as in
+    # Gymnasium's own MuJoCo environments, whose spaces are also (-inf, inf)
+    "A Box observation space minimum value is -infinity",
+    "A Box observation space maximum value is infinity",
+)
+
+
+def test_check_env_passes_with_allow_listed_warnings_only():
+    env = gym.make(ENV_ID, objects="block")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_env(env.unwrapped)
+    unexpected = [str(w.message) for w in caught if not any(a in str(w.message) for a in ALLOWED_WARNINGS)]
+    assert unexpected == []
+
+
+def _rollout(env, seed, n=200):
+    obs, _ = env.reset(seed=seed)
+    rng = np.random.default_rng(seed)
+    out = [obs]
+    env.action_space.seed(seed)
+    for _ in range(n):
+        obs, _, term, trunc, _ = env.step(rng.uniform(-1, 1, env.action_space.shape))
+        out.append(obs)
+        if term or trunc:
+            obs, _ = env.reset()
+            out.append(obs)
+    return np.array(out)
+
+
+def test_same_seed_same_episode():
+    a = _rollout(gym.make(ENV_ID, objects="block,cylinder"), seed=3)
+    b = _rollout(gym.make(ENV_ID, objects="block,cylinder"), seed=3)
+    assert np.array_equal(a, b)
+    c = _rollout(gym.make(ENV_ID, objects="block,cylinder"), seed=4, n=20)
+    assert not np.array_equal(a[:21], c)
+
+
+def test_reset_state_identical_after_a_step():
+    """As Gymnasium's check_mujoco_reset_state: reset(seed) after stepping gives the same state."""
+    env = gym.make(ENV_ID, objects="block")
+    obs1, _ = env.reset(seed=11)
+    d1 = env.unwrapped._ep.data
+    q1, v1 = d1.qpos.copy(), d1.qvel.copy()
+    env.step(env.action_space.sample())
+    obs2, _ = env.reset(seed=11)
+    d2 = env.unwrapped._ep.data
+    assert np.array_equal(obs1, obs2)
+    assert np.array_equal(q1, d2.qpos) and np.array_equal(v1, d2.qvel)
+
+
+@pytest.mark.parametrize("nthread", [None, 0])
+def test_native_vector_env_equals_single_envs(nthread):
+    n = 3
+    venv = gym.make_vec(ENV_ID, num_envs=n, vectorization_mode="vector_entry_point", nthread=nthread,
+                        objects="block,cylinder", max_episode_steps=40)
+    singles = [gym.make(ENV_ID, objects="block,cylinder", max_episode_steps=40) for _ in range(n)]
+    vobs, _ = venv.reset(seed=20)
+    sobs = [e.reset(seed=20 + i)[0] for i, e in enumerate(singles)]
+    assert np.array_equal(vobs, np.stack(sobs))
+    rng = np.random.default_rng(0)
+    pending = [False] * n
+    ends = 0
+    for _ in range(90):
+        act = rng.uniform(-1, 1, (n,) + singles[0].action_space.shape)
+        vobs, vrew, vterm, vtrunc, _ = venv.step(act)
+        for i, e in enumerate(singles):
+            if pending[i]:  # NEXT_STEP autoreset: this step resets the slot
+                o, _ = e.reset()
+                r, te, tr = 0.0, False, False
+            else:
+                o, r, te, tr, _ = e.step(act[i])
+            pending[i] = te or tr
+            ends += pending[i]
+            assert np.array_equal(vobs[i], o)
+            assert vrew[i] == r and vterm[i] == te and vtrunc[i] == tr
+    assert ends >= n  # every slot went through at least one truncation and autoreset
+
+
+def test_sync_and_async_vector_envs_and_pickle():
+    for mode in ("sync", "async"):
+        venv = gym.make_vec(ENV_ID, num_envs=2, vectorization_mode=mode, objects="block")
+        obs, _ = venv.reset(seed=0)
+        obs2, *_ = venv.step(venv.action_space.sample())
+        assert obs2.shape == (2, 84)
+        venv.close()
+    env = gym.make(ENV_ID, objects="block")
+    env.reset(seed=1)
+    env.step(env.action_space.sample())
+    clone = pickle.loads(pickle.dumps(env))
+    a = env.action_space.sample()
+    assert np.array_equal(env.step(a)[0], clone.step(a)[0])
+
+
+def _doc_table(doc: str, heading: str) -> list[list[str]]:
+    section = doc.split(f"## {heading}")[1].split("## ")[0]
+    rows = [r.strip() for r in section.splitlines() if r.strip().startswith("|")]
+    return [[c.strip() for c in r.strip("|").split("|")] for r in rows[2:]]
+
+
+def test_docstring_tables_match_spaces():
+    env = SoftGripperGraspEnv(objects="block")
+    rows = _doc_table(SoftGripperGraspEnv.__doc__, "Observation space")
+    struct = env.observation_structure
+    assert [r[0] for r in rows] == list(struct)
+    for name, idx, size, unit in rows:
+        start, n, u = struct[name]
+        assert idx == f"{start}-{start + n - 1}" and int(size) == n and unit == u
+    assert f"({env.observation_space.shape[0]},)" in SoftGripperGraspEnv.__doc__
+    actions = _doc_table(SoftGripperGraspEnv.__doc__, "Action space")
+    for mode, extra in (("fingers", 0), ("synergy", 0), ("fingers", 2)):
+        e = SoftGripperGraspEnv(objects="block", action_mode=mode, xy_actions=bool(extra))
+        listed = 0
+        for r in actions:
+            if r[0] in (mode, "either, xy_actions" if extra else mode):
+                a, _, b = r[1].partition("-")
+                listed += int(b or a) - int(a) + 1 if r[0] != "either, xy_actions" else 2
+        assert listed == e.action_space.shape[0]
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"objects": "teapot"}, "unknown object"),
+    ({"render_mode": "video"}, "render_mode"),
+    ({"action_mode": "claw"}, "action_mode"),
+    ({"pose_noise": -0.1}, "pose_noise"),
+    ({"camera": "drone"}, "camera"),
+])
+def test_bad_constructor_arguments(kwargs, field):
+    with pytest.raises(ValueError, match=re.escape(field)):
+        SoftGripperGraspEnv(**kwargs)
+
+
+def test_bad_actions():
+    env = SoftGripperGraspEnv(objects="block")
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match="action: expected shape"):
+        env.step(np.zeros(3))
+    with pytest.raises(ValueError, match="action: contains NaN"):
+        env.step(np.full(5, np.nan))
+
+
+def test_rgb_and_depth_rendering():
+    env = SoftGripperGraspEnv(objects="block", render_mode="rgb_array", width=160, height=120)
+    env.reset(seed=0)
+    img = env.render()
+    assert img.shape == (120, 160, 3) and img.std() > 5
+    env = SoftGripperGraspEnv(objects="block", render_mode="depth_array", width=160, height=120)
+    env.reset(seed=0)
+    depth = env.render()
+    assert depth.shape == (120, 160) and 0.1 < float(np.median(depth)) < 2.0  # metres, camera 0.5 m away
+
+
+def test_unstable_simulation_ends_the_episode_and_is_reported():
+    env = SoftGripperGraspEnv(objects="block")
+    obs0, _ = env.reset(seed=0)
+    env._ep.data.qvel[:] = 1e12  # a diverging state, as a blown-up solver would leave
+    obs, reward, terminated, truncated, info = env.step(np.zeros(5))
+    assert terminated and info["unstable"]
+    assert "warning" in info["error"] or "non-finite" in info["error"]
+    assert np.isfinite(obs).all() and reward == 0.0
