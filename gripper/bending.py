@@ -154,8 +154,11 @@ class _Probe:
 
 
 def run_bending_test(config: BendingConfig | None = None,
-                     params: GripperParams | None = None) -> BendingResult:
+                     params: GripperParams | None = None, on_sample=None) -> BendingResult:
     """Run the bending test and return the recorded arrays.
+
+    ``on_sample(model, data)``, if given, is called at every recorded sample (after the
+    row is taken), e.g. to keep states for pictures.
 
     Raises:
         ValueError: invalid config or parameters.
@@ -184,6 +187,8 @@ def run_bending_test(config: BendingConfig | None = None,
             if step in record_at:
                 mujoco.mj_forward(model, data)
                 rows.append((data.time, r_cmd, *probe.read(data)))
+                if on_sample is not None:
+                    on_sample(model, data)
             data.ctrl[servo] = r_cmd * theta_per_r
             mujoco.mj_step(model, data)
             if step % 200 == 0:
@@ -207,6 +212,8 @@ def run_bending_test(config: BendingConfig | None = None,
                         f"bending test: no rest within {cfg.settle_time_max} s at r = {r_cmd:.3f}")
             mujoco.mj_forward(model, data)
             rows.append((data.time, r_cmd, *probe.read(data)))
+            if on_sample is not None:
+                on_sample(model, data)
     wall = time.perf_counter() - t0
     check_stable(model, data, "bending test")
 

@@ -3,7 +3,7 @@
 Subcommands: ``bend`` (paper 000's bending test), ``servo`` (servo model against its
 datasheet), ``params`` (write the default parameter file), ``write-models`` (regenerate
 ``models/soft_gripper``), ``check`` (step the scene under random servo commands), ``bench``
-(the grasp benchmark), ``pullout`` (holding force).
+(the grasp benchmark), ``pullout`` (holding force), ``video`` (render one trial).
 
 Errors in input (bad parameter, malformed file) print one line on stderr and exit with code 2.
 """
@@ -30,7 +30,13 @@ def _cmd_bend(args) -> int:
 
     cfg = BendingConfig(r_max=args.r_max, duration=args.duration, timestep=args.timestep,
                         mode=args.mode, n_points=args.points)
-    res = run_bending_test(cfg, _params(args))
+    if args.figure:
+        from gripper.figures import bending_figure
+
+        res = bending_figure(args.figure, cfg, _params(args))
+        print(f"wrote {args.figure}", file=sys.stderr if args.json else sys.stdout)
+    else:
+        res = run_bending_test(cfg, _params(args))
     if args.json:
         json.dump(res.to_json_dict(), sys.stdout)
         sys.stdout.write("\n")
@@ -89,24 +95,56 @@ def _csv_objects(text: str) -> tuple[str, ...]:
 
 def _cmd_bench(args) -> int:
     from gripper.bench import BenchConfig, format_table, run_benchmark
-    from gripper.protocol import GraspProtocol, TrialNoise
 
     if args.trials < 1:
         raise ValueError(f"--trials: must be >= 1, got {args.trials}")
     if args.workers < 1:
         raise ValueError(f"--workers: must be >= 1, got {args.workers}")
-    if args.noise < 0:
-        raise ValueError(f"--noise: must be >= 0 m, got {args.noise}")
-    proto = GraspProtocol(close_command_scale=args.close_scale, release=args.release).validate()
-    noise = TrialNoise(xy=args.noise, mass_frac=args.mass_noise, friction_frac=args.friction_noise).validate()
+    proto, noise = _protocol_and_noise(args)
     cfg = BenchConfig(objects=_csv_objects(args.objects), trials=args.trials, seed=args.seed,
                       params=_params(args), protocol=proto, noise=noise).validate()
+    if args.plot:
+        from gripper.figures import _check_png
+
+        _check_png(args.plot, "--plot")  # before the run: a bad path must not cost a benchmark
     summary = run_benchmark(cfg, args.out, workers=args.workers, scheduler=args.scheduler,
                             progress=not args.no_progress)
     print(format_table(summary))
     print(f"wrote {args.out}/trials.jsonl, summary.csv, summary.json")
+    if args.plot:
+        from gripper.figures import success_plot
+
+        success_plot(summary, args.plot)
+        print(f"wrote {args.plot}")
     errors = sum(s["errors"] for s in summary["objects"].values())
     return EXIT_UNSTABLE if errors else 0
+
+
+def _protocol_and_noise(args):
+    from gripper.protocol import GraspProtocol, TrialNoise
+
+    if args.noise < 0:
+        raise ValueError(f"--noise: must be >= 0 m, got {args.noise}")
+    proto = GraspProtocol(close_command_scale=args.close_scale, release=args.release).validate()
+    noise = TrialNoise(xy=args.noise, mass_frac=args.mass_noise, friction_frac=args.friction_noise).validate()
+    return proto, noise
+
+
+def _cmd_video(args) -> int:
+    from gripper.objects import get_object
+    from gripper.video import record_trial_video
+
+    proto, noise = _protocol_and_noise(args)
+    obj = get_object(args.object)
+    res = record_trial_video(obj, args.out, seed=args.seed, index=args.index, params=_params(args),
+                             protocol=proto, noise=noise, width=args.width, height=args.height, fps=args.fps,
+                             camera=args.camera, overlay=not args.no_overlay)
+    outcome = "error" if res["status"] == "error" else ("success" if res["success"] else
+                                                        f"failed ({res['failed_phase']})")
+    print(f"{res['trial_id']}: {outcome}; wrote {res['video']} ({res['frames']} frames, "
+          f"{res['width']}x{res['height']} at {res['fps']:g} fps); simulate {res['simulate_s']:.1f} s, "
+          f"render {res['render_s']:.1f} s ({res['render_fps']:.1f} frames/s), encode {res['encode_s']:.1f} s")
+    return EXIT_UNSTABLE if res["status"] == "error" else 0
 
 
 def _cmd_pullout(args) -> int:
@@ -127,6 +165,15 @@ def build_parser() -> argparse.ArgumentParser:
                     "All quantities in SI units unless a name says otherwise.")
     sub = parser.add_subparsers(dest="command", required=True)
 
+    def with_protocol(p):
+        p.add_argument("--noise", type=float, default=0.010, help="x/y placement noise half-range [m] (default 0.01)")
+        p.add_argument("--mass-noise", type=float, default=0.0, help="mass noise fraction, e.g. 0.2 (default 0)")
+        p.add_argument("--friction-noise", type=float, default=0.0, help="friction noise fraction (default 0)")
+        p.add_argument("--close-scale", type=float, default=1.0,
+                       help="multiplier on each object's closing command (default 1; >1 squeezes harder)")
+        p.add_argument("--release", action="store_true", help="open the fingers at the end of each trial")
+        return p
+
     def with_params(p):
         p.add_argument("--params", metavar="FILE",
                        help="gripper parameter file (.json or .toml); defaults if omitted")
@@ -141,6 +188,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="print a JSON object with arrays r, tension_N, joint_angles_deg, "
                         "bending_angle_deg, tip_xyz_m")
     b.add_argument("--mode", choices=("dynamic", "quasi_static"), default="dynamic")
+    b.add_argument("--figure", metavar="FILE.png",
+                   help="also write a PNG: side-view montage of the finger at six shortening rates "
+                        "and the bending-angle curve")
     b.add_argument("--r-max", type=float, default=0.45, help="final shortening rate (default 0.45)")
     b.add_argument("--duration", type=float, default=2.0, help="ramp time [s] (default 2)")
     b.add_argument("--timestep", type=float, default=5e-4, help="step [s] (default 5e-4)")
@@ -176,14 +226,27 @@ def build_parser() -> argparse.ArgumentParser:
     bn.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
     bn.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786")
     bn.add_argument("--out", default="runs/bench", metavar="DIR", help="output folder (default runs/bench)")
-    bn.add_argument("--noise", type=float, default=0.010, help="x/y placement noise half-range [m] (default 0.01)")
-    bn.add_argument("--mass-noise", type=float, default=0.0, help="mass noise fraction, e.g. 0.2 (default 0)")
-    bn.add_argument("--friction-noise", type=float, default=0.0, help="friction noise fraction (default 0)")
-    bn.add_argument("--close-scale", type=float, default=1.0,
-                    help="multiplier on each object's closing command (default 1; >1 squeezes harder)")
-    bn.add_argument("--release", action="store_true", help="open the fingers at the end of each trial")
+    with_protocol(bn)
     bn.add_argument("--no-progress", action="store_true", help="no progress bar")
+    bn.add_argument("--plot", metavar="FILE.png", help="also write the success rates with Wilson 95 %% intervals")
     bn.set_defaults(func=_cmd_bench)
+
+    from gripper.render import CAMERAS
+    v = with_protocol(with_params(sub.add_parser(
+        "video", help="render one scripted trial to MP4 or GIF (headless)",
+        description="Run one scripted grasp trial (the benchmark's protocol and options), record its "
+                    "state at the video rate and render it offscreen with MuJoCo (MUJOCO_GL=egl by "
+                    "default), then write H.264 MP4 or GIF with mediapy.")))
+    v.add_argument("--object", required=True, help="object name (" + ", ".join(DEFAULT_OBJECTS) + ") or mesh:PATH")
+    v.add_argument("--seed", type=int, default=0, help="base seed (default 0)")
+    v.add_argument("--index", type=int, default=0, help="trial index within the seed (default 0)")
+    v.add_argument("--out", required=True, metavar="FILE", help="output .mp4 or .gif")
+    v.add_argument("--camera", default="front", help="camera preset: " + ", ".join(CAMERAS) + " (default front)")
+    v.add_argument("--width", type=int, default=640, help="pixels (default 640)")
+    v.add_argument("--height", type=int, default=480, help="pixels (default 480)")
+    v.add_argument("--fps", type=float, default=30.0, help="frames per second (default 30)")
+    v.add_argument("--no-overlay", action="store_true", help="no text overlay (phase, time, cable tensions)")
+    v.set_defaults(func=_cmd_video)
 
     po = with_params(sub.add_parser("pullout", help="holding force: pull the held object until it slips 5 mm"))
     po.add_argument("--objects", default="block,cylinder", help="comma-separated names")

@@ -24,7 +24,7 @@ _MODEL_CAMERAS = {"front": "front", "side": "side", "palm": "palm_cam"}
 
 
 @dataclass(frozen=True)
-class _FreeView:
+class FreeView:
     lookat: tuple[float, float, float]
     distance: float
     azimuth: float
@@ -32,8 +32,8 @@ class _FreeView:
 
 
 # "top": straight down on the grasp site from 0.5 m; "track": 0.45 m from the palm, 35° down.
-_FREE = {"top": _FreeView((0.0, 0.0, 0.05), 0.5, 90.0, -89.0),
-         "track": _FreeView((0.0, 0.0, 0.0), 0.45, 135.0, -35.0)}
+_FREE = {"top": FreeView((0.0, 0.0, 0.05), 0.5, 90.0, -89.0),
+         "track": FreeView((0.0, 0.0, 0.0), 0.45, 135.0, -35.0)}
 
 
 def choose_gl_backend() -> str | None:
@@ -64,13 +64,15 @@ class SceneRenderer:
         model: the compiled model.
         width, height: image size [px]; the model's offscreen buffer is enlarged if needed.
         camera: one of :data:`CAMERAS`.
+        view: a free camera (lookat, distance, azimuth, elevation) used instead of ``camera``.
 
     Raises:
         ValueError: unknown camera or a bad size (one line naming the argument).
         RuntimeError: no OpenGL context could be started (says what to install).
     """
 
-    def __init__(self, model, *, width: int = 640, height: int = 480, camera: str = "front"):
+    def __init__(self, model, *, width: int = 640, height: int = 480, camera: str = "front",
+                 view: FreeView | None = None):
         import mujoco
 
         if camera not in CAMERAS:
@@ -87,10 +89,10 @@ class SceneRenderer:
         except Exception as e:  # the GL backends raise many types
             raise gl_error(e) from None
         self.camera = camera
-        if camera in _MODEL_CAMERAS:
+        if view is None and camera in _MODEL_CAMERAS:
             self._cam = _MODEL_CAMERAS[camera]
         else:
-            v = _FREE[camera]
+            v = view or _FREE[camera]
             cam = mujoco.MjvCamera()
             cam.lookat[:] = v.lookat
             cam.distance, cam.azimuth, cam.elevation = v.distance, v.azimuth, v.elevation

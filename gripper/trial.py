@@ -171,6 +171,7 @@ class _Recorder:
         self.peak_finger = np.zeros(probe.n_fingers)
         self.peak_tension = 0.0
         self.peak_strain = 0.0
+        self.frame_sink = None  # optional: receives (phase, states, sensordata) of every chunk
 
     def add(self, sensordata: np.ndarray, d: mujoco.MjData) -> None:
         per_finger = self.probe.finger_forces(d)
@@ -201,6 +202,7 @@ class _Stepper:
         if n not in self._out:
             self._out[n] = (np.empty((1, n, self.state0.shape[1])), np.empty((1, n, self.m.nsensordata)))
         state, sens = self._out[n]
+        self.last_states = state[0]
         mujoco.mj_getState(self.m, self.d, self.state0[0], STATE_SPEC)
         # the solver's warm start is not part of the physics state: pass it on so that the
         # result does not depend on where chunks are cut (bitwise equal to plain mj_step)
@@ -226,16 +228,21 @@ def _run_phase(stepper, probe, rec, ctrl_fn, duration, chunk, what, on_chunk=Non
         done += n
         check_stable(m, d, what)
         rec.add(sens, d)
+        if rec.frame_sink is not None:
+            rec.frame_sink.add(what, stepper.last_states, sens)
         if on_chunk is not None and on_chunk(d):
             return
 
 
 def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
               params: GripperParams | None = None, protocol: GraspProtocol | None = None,
-              noise: TrialNoise | None = None, placement: Placement | None = None) -> dict:
+              noise: TrialNoise | None = None, placement: Placement | None = None,
+              frame_sink=None) -> dict:
     """Run one scripted grasp trial; return its record (a JSON-ready dict, SI units).
 
-    ``placement`` overrides the sampled perturbation. An unstable simulation does not raise:
+    ``placement`` overrides the sampled perturbation. ``frame_sink`` (optional, see
+    :class:`gripper.video.FrameRecorder`) gets ``start(model, probe)`` once and then
+    ``add(phase, states, sensordata)`` after every chunk, for recording a video. An unstable simulation does not raise:
     the record gets ``status = "error"`` and the message, and counts neither as success nor
     failure.
     """
@@ -258,6 +265,9 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
     mujoco.mj_forward(m, d)
     probe = _Probe(m, obj, p.layout.n_fingers)
     rec = _Recorder(probe)
+    if frame_sink is not None:
+        frame_sink.start(m, probe)
+        rec.frame_sink = frame_sink
     try:
         out = _protocol_steps(m, d, p, obj, proto, probe, rec)
         record.update(status="ok", **out)
