@@ -138,7 +138,7 @@ def _cmd_video(args) -> int:
     obj = get_object(args.object)
     res = record_trial_video(obj, args.out, seed=args.seed, index=args.index, params=_params(args),
                              protocol=proto, noise=noise, width=args.width, height=args.height, fps=args.fps,
-                             camera=args.camera, overlay=not args.no_overlay)
+                             camera=args.camera, overlay=not args.no_overlay, still=args.still)
     outcome = "error" if res["status"] == "error" else ("success" if res["success"] else
                                                         f"failed ({res['failed_phase']})")
     print(f"{res['trial_id']}: {outcome}; wrote {res['video']} ({res['frames']} frames, "
@@ -246,6 +246,7 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--height", type=int, default=480, help="pixels (default 480)")
     v.add_argument("--fps", type=float, default=30.0, help="frames per second (default 30)")
     v.add_argument("--no-overlay", action="store_true", help="no text overlay (phase, time, cable tensions)")
+    v.add_argument("--still", metavar="FILE.png", help="also write the first frame of the hold phase as PNG")
     v.set_defaults(func=_cmd_video)
 
     po = with_params(sub.add_parser("pullout", help="holding force: pull the held object until it slips 5 mm"))

@@ -54,7 +54,8 @@ def gl_error(err: Exception) -> RuntimeError:
     return RuntimeError(
         f"render: cannot start an OpenGL context with MUJOCO_GL={backend} ({err}). Headless rendering "
         "needs Mesa EGL (Debian: apt install libegl1 libgl1-mesa-dri) or OSMesa (apt install "
-        "libosmesa6, then MUJOCO_GL=osmesa); set MUJOCO_GL before starting Python.")
+        "libosmesa6, then MUJOCO_GL=osmesa). MUJOCO_GL must be set before mujoco is imported: "
+        "import gripper first, or export MUJOCO_GL=egl.")
 
 
 class SceneRenderer:

@@ -119,8 +119,10 @@ def write_video(frames: np.ndarray, out: str | Path, fps: float) -> None:
 
 def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, params=None, protocol=None,
                        noise=None, width: int = 640, height: int = 480, fps: float = 30.0,
-                       camera: str = "front", overlay: bool = True) -> dict:
+                       camera: str = "front", overlay: bool = True, still: str | Path | None = None) -> dict:
     """Run one scripted trial and write its video; return the trial record plus video figures.
+
+    ``still``: also write one frame as PNG, the first of the hold phase (the object lifted).
 
     Raises:
         ValueError: bad output path, camera, size or fps (checked before the trial runs).
@@ -128,6 +130,10 @@ def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, p
     from gripper.trial import run_trial
 
     out = check_output_path(out)
+    if still is not None:
+        still = Path(still)
+        if still.suffix.lower() != ".png" or not (still.parent if str(still.parent) else Path(".")).is_dir():
+            raise ValueError(f"--still: must be a .png in an existing folder, got {still}")
     if camera not in CAMERAS:
         raise ValueError(f"--camera: unknown camera {camera!r}; allowed: {', '.join(CAMERAS)}")
     for name, v in (("--width", width), ("--height", height)):
@@ -145,6 +151,18 @@ def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, p
     t0 = time.perf_counter()
     write_video(frames, out, fps)
     t_write = time.perf_counter() - t0
+    if still is not None:
+        import mediapy
+
+        k = rec.phases.index("hold") if "hold" in rec.phases else len(frames) // 2
+        fd, tmp = tempfile.mkstemp(prefix=f".{still.stem}-", suffix=".png", dir=still.parent)
+        os.close(fd)
+        try:
+            mediapy.write_image(tmp, frames[k])
+            os.replace(tmp, still)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
     return {**record, "video": str(out), "frames": len(frames), "fps": fps, "width": width, "height": height,
             "simulate_s": t_sim, "render_s": t_render, "encode_s": t_write,
             "render_fps": len(frames) / t_render if t_render > 0 else float("inf")}
