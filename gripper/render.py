@@ -20,6 +20,11 @@ from dataclasses import dataclass
 # at the object; "top" and "track" are free cameras set here (no change to the committed model):
 # "track" follows the palm body at a three-quarter view.
 CAMERAS = ("front", "side", "top", "track", "palm")
+# Software rendering (Mesa llvmpipe, no GPU) spends most of a frame on multisampling and the
+# shadow map: without 4× MSAA and with a 1024 px shadow map (MuJoCo's defaults: 4×, 4096 px) a
+# 640×480 frame renders about 3× faster here (4.2 -> 12.4 frames/s, measured side by side),
+# with slightly harder edges and softer shadows.
+SHADOW_SIZE = 1024
 _MODEL_CAMERAS = {"front": "front", "side": "side", "palm": "palm_cam"}
 
 
@@ -66,6 +71,11 @@ class SceneRenderer:
         width, height: image size [px]; the model's offscreen buffer is enlarged if needed.
         camera: one of :data:`CAMERAS`.
         view: a free camera (lookat, distance, azimuth, elevation) used instead of ``camera``.
+        antialias: 4× multisampling (MuJoCo's default); off by default, see :data:`SHADOW_SIZE`.
+        shadow_size: shadow map size [px].
+
+    The model's visual settings (offscreen buffer size, multisampling, shadow map) are set on
+    ``model`` itself; they change pictures only, never the physics.
 
     Raises:
         ValueError: unknown camera or a bad size (one line naming the argument).
@@ -73,7 +83,7 @@ class SceneRenderer:
     """
 
     def __init__(self, model, *, width: int = 640, height: int = 480, camera: str = "front",
-                 view: FreeView | None = None):
+                 view: FreeView | None = None, antialias: bool = False, shadow_size: int = SHADOW_SIZE):
         import mujoco
 
         if camera not in CAMERAS:
@@ -85,6 +95,8 @@ class SceneRenderer:
         # the offscreen framebuffer must hold the image: raise it for this model when needed
         model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
         model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+        model.vis.quality.offsamples = 4 if antialias else 0
+        model.vis.quality.shadowsize = int(shadow_size)
         try:
             self._r = mujoco.Renderer(model, height=height, width=width)
         except Exception as e:  # the GL backends raise many types
