@@ -11,10 +11,11 @@ Example:
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
+
+from gripper.atomic import write_atomic
 
 # Cable shortening rates shown in the montage: six evenly spaced points from straight to the
 # bending test's r_max.
@@ -32,14 +33,7 @@ def _check_png(out: str | Path, flag: str) -> Path:
 
 
 def _save(fig, out: Path) -> None:
-    fd, tmp = tempfile.mkstemp(prefix=f".{out.stem}-", suffix=".png", dir=out.parent)
-    os.close(fd)
-    try:
-        fig.savefig(tmp, dpi=100)
-        os.replace(tmp, out)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    write_atomic(out, lambda tmp: fig.savefig(tmp, dpi=100, format="png"))
 
 
 def bending_figure(out: str | Path, config=None, params=None, *, width: int = 320, height: int = 240):

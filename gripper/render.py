@@ -36,9 +36,11 @@ class FreeView:
     elevation: float
 
 
-# "top": straight down on the grasp site from 0.5 m; "track": 0.45 m from the palm, 35° down.
+# "top": straight down on the grasp site from 0.5 m; "track": 0.32 m from the palm's subtree
+# centre of mass (the palm with its fingers), 12° down, from between two fingers, so the
+# object inside the fingers stays visible under the palm.
 _FREE = {"top": FreeView((0.0, 0.0, 0.05), 0.5, 90.0, -89.0),
-         "track": FreeView((0.0, 0.0, 0.0), 0.45, 135.0, -35.0)}
+         "track": FreeView((0.0, 0.0, 0.0), 0.32, 135.0, -12.0)}
 
 
 def choose_gl_backend() -> str | None:

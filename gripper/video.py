@@ -16,7 +16,6 @@ Example:
 from __future__ import annotations
 
 import os
-import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -24,6 +23,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from gripper.atomic import write_atomic
 from gripper.render import CAMERAS, SceneRenderer
 
 VIDEO_SUFFIXES = (".mp4", ".gif")
@@ -106,15 +106,8 @@ def write_video(frames: np.ndarray, out: str | Path, fps: float) -> None:
 
     out = check_output_path(out)
     mediapy.set_ffmpeg(imageio_ffmpeg.get_ffmpeg_exe())
-    fd, tmp = tempfile.mkstemp(prefix=f".{out.stem}-", suffix=out.suffix, dir=out.parent)
-    os.close(fd)
-    try:
-        codec = "gif" if out.suffix.lower() == ".gif" else "h264"
-        mediapy.write_video(tmp, frames, fps=fps, codec=codec)
-        os.replace(tmp, out)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    codec = "gif" if out.suffix.lower() == ".gif" else "h264"
+    write_atomic(out, lambda tmp: mediapy.write_video(tmp, frames, fps=fps, codec=codec))
 
 
 def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, params=None, protocol=None,
@@ -155,14 +148,7 @@ def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, p
         import mediapy
 
         k = rec.phases.index("hold") if "hold" in rec.phases else len(frames) // 2
-        fd, tmp = tempfile.mkstemp(prefix=f".{still.stem}-", suffix=".png", dir=still.parent)
-        os.close(fd)
-        try:
-            mediapy.write_image(tmp, frames[k])
-            os.replace(tmp, still)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        write_atomic(still, lambda tmp: mediapy.write_image(tmp, frames[k]))
     return {**record, "video": str(out), "frames": len(frames), "fps": fps, "width": width, "height": height,
             "simulate_s": t_sim, "render_s": t_render, "encode_s": t_write,
             "render_fps": len(frames) / t_render if t_render > 0 else float("inf")}
