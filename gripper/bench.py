@@ -35,6 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
+from gripper.execution import read_jsonl, run_ordered
 from gripper.objects import DEFAULT_OBJECTS, get_object
 from gripper.params import GripperParams
 from gripper.protocol import GraspProtocol, TrialNoise
@@ -100,19 +101,8 @@ def _trial_key(rec: dict) -> tuple[str, int]:
 
 
 def read_trials(path: Path) -> list[dict]:
-    """Complete records of ``trials.jsonl``; a torn last line (a killed writer) is cut off."""
-    if not path.exists():
-        return []
-    raw = path.read_bytes()
-    keep = raw[: raw.rfind(b"\n") + 1]
-    if len(keep) != len(raw):
-        with open(path, "r+b") as f:
-            f.truncate(len(keep))
-    out = []
-    for line in keep.decode().splitlines():
-        if line.strip():
-            out.append(json.loads(line))
-    return out
+    """Complete records of ``trials.jsonl`` (a torn last line is cut off)."""
+    return read_jsonl(path)
 
 
 def _prepare_dir(out: Path, cfg: BenchConfig) -> None:
@@ -135,28 +125,6 @@ def _prepare_dir(out: Path, cfg: BenchConfig) -> None:
     os.replace(tmp, cfile)
 
 
-def _executor(workers: int, scheduler: str | None):
-    """(submit, close) over Dask; in-process for one local worker."""
-    if scheduler is None and workers == 1:
-        class _Inline:
-            def submit(self, fn, *a):
-                return fn(*a)
-        return _Inline(), (lambda: None), False
-    from dask.distributed import Client, LocalCluster
-
-    if scheduler:
-        client = Client(scheduler)
-        return client, client.close, True
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                           dashboard_address=":0")
-    client = Client(cluster)
-
-    def close():
-        client.close()
-        cluster.close()
-    return client, close, True
-
-
 def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = 1, scheduler: str | None = None,
                   progress: bool = True) -> dict:
     """Run (or resume) the benchmark into ``out``; return the summary dict.
@@ -173,40 +141,9 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = 1, schedu
     done = {_trial_key(r): r for r in read_trials(tpath)}
     todo = [j for j in cfg.jobs() if j not in done]
     t0 = time.perf_counter()
-    bar = None
-    if progress and todo:
-        from tqdm import tqdm
-        bar = tqdm(total=len(cfg.jobs()), initial=len(cfg.jobs()) - len(todo), unit="trial",
-                   desc="grasp trials")
-    if todo:
-        ex, close, distributed = _executor(workers, scheduler)
-        try:
-            with open(tpath, "a", encoding="utf-8") as f:
-                def write(rec):
-                    f.write(json.dumps(rec, sort_keys=True) + "\n")
-                    f.flush()
-                    os.fsync(f.fileno())
-                    done[_trial_key(rec)] = rec
-                    if bar is not None:
-                        bar.update(1)
-                if not distributed:
-                    for obj, i in todo:
-                        write(ex.submit(_run_one, cfg, obj, i))
-                else:
-                    from dask.distributed import as_completed
-                    futures = {ex.submit(_run_one, cfg, obj, i, pure=False): (obj, i) for obj, i in todo}
-                    pending: dict[tuple[str, int], dict] = {}
-                    order = iter(todo)
-                    nxt = next(order, None)
-                    for fut in as_completed(futures):
-                        pending[futures[fut]] = fut.result()
-                        while nxt is not None and nxt in pending:  # write in trial order
-                            write(pending.pop(nxt))
-                            nxt = next(order, None)
-        finally:
-            close()
-            if bar is not None:
-                bar.close()
+    run_ordered([(cfg, obj, i) for obj, i in todo], _run_one, tpath, workers=workers, scheduler=scheduler,
+                on_record=lambda rec: done.__setitem__(_trial_key(rec), rec),
+                progress=(len(cfg.jobs()), len(cfg.jobs()) - len(todo), "grasp trials") if progress else None)
     records = [done[j] for j in cfg.jobs()]
     summary = summarize(records, cfg, wall_time_s=time.perf_counter() - t0)
     write_summary(out, summary)

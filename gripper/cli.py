@@ -147,6 +147,21 @@ def _cmd_video(args) -> int:
     return EXIT_UNSTABLE if res["status"] == "error" else 0
 
 
+def _cmd_study(args) -> int:
+    from gripper.study import load_study, run_study
+
+    study = load_study(args.file)
+    if args.workers < 1:
+        raise ValueError(f"--workers: must be >= 1, got {args.workers}")
+    records = run_study(study, args.out, workers=args.workers, scheduler=args.scheduler,
+                        progress=not args.no_progress)
+    failed = sum(r["status"] != "ok" for r in records)
+    print((open(f"{args.out}/recommendations.md").read()).rstrip())
+    print(f"{len(records)} design points ({failed} failed); wrote {args.out}/results.jsonl, results.csv, "
+          "plot_*.png, recommendations.md")
+    return 0
+
+
 def _cmd_pullout(args) -> int:
     from gripper.trial import run_pullout
 
@@ -248,6 +263,18 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--no-overlay", action="store_true", help="no text overlay (phase, time, cable tensions)")
     v.add_argument("--still", metavar="FILE.png", help="also write the first frame of the hold phase as PNG")
     v.set_defaults(func=_cmd_video)
+
+    st = sub.add_parser(
+        "study", help="design-parameter study from a TOML file (paper 001's method)",
+        description="Vary design parameters (one at a time, factorial or Latin hypercube), compute the "
+                    "responses of every design point on Dask, and write results.jsonl, results.csv, one "
+                    "plot per parameter and recommendations.md into --out. Rerunning resumes.")
+    st.add_argument("file", metavar="FILE.toml")
+    st.add_argument("--out", required=True, metavar="DIR")
+    st.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    st.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://127.0.0.1:8786")
+    st.add_argument("--no-progress", action="store_true")
+    st.set_defaults(func=_cmd_study)
 
     po = with_params(sub.add_parser("pullout", help="holding force: pull the held object until it slips 5 mm"))
     po.add_argument("--objects", default="block,cylinder", help="comma-separated names")

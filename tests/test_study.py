@@ -1,0 +1,129 @@
+"""Design studies: workers, resume after SIGKILL, refusal of bad study files, responses."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from gripper.cli import main
+from gripper.params import GripperParams
+from gripper.study import apply_point, blocked_tip_force, gent_modulus, load_study
+
+STUDY = """
+[study]
+name = "test"
+design = "one_at_a_time"
+
+[vary]
+"finger.hole_height" = [0.010, 0.011, 0.013, 0.014]
+
+[responses]
+bending = { r_max = 0.40 }
+tension_for_angle = { angle_deg = 90.0 }
+grasp = { objects = ["block"], trials = 1 }
+
+[objective]
+minimize = "tension_for_angle_N"
+"""
+
+
+def _records(out):
+    recs = [json.loads(x) for x in (out / "results.jsonl").read_text().splitlines()]
+    return [{k: v for k, v in r.items() if k != "wall_time_s"} for r in recs]
+
+
+@pytest.fixture(scope="module")
+def study_file(tmp_path_factory):
+    path = tmp_path_factory.mktemp("study") / "s.toml"
+    path.write_text(STUDY)
+    return path
+
+
+@pytest.fixture(scope="module")
+def reference(study_file, tmp_path_factory):
+    out = tmp_path_factory.mktemp("ref")
+    assert main(["study", str(study_file), "--out", str(out), "--workers", "1", "--no-progress"]) == 0
+    return out
+
+
+def test_outputs_and_physics(reference):
+    recs = _records(reference)
+    assert [r["point"] for r in recs] == [0, 1, 2, 3, 4] and all(r["status"] == "ok" for r in recs)
+    # a longer lever arm (hole further from the hinge) needs less tension for the same bend
+    t = {r["changes"].get("finger.hole_height", 0.012): r["metrics"]["tension_for_angle_N"] for r in recs}
+    assert t[0.010] > t[0.012] > t[0.014]
+    csv = (reference / "results.csv").read_text().splitlines()
+    assert csv[0].startswith("point,finger.hole_height,status,calibrated,metric,value")
+    assert (reference / "plot_finger_hole_height.png").stat().st_size > 1000
+    md = (reference / "recommendations.md").read_text()
+    assert "| finger.hole_height | 0.014 |" in md
+
+
+def test_two_workers_same_results(study_file, reference, tmp_path):
+    out = tmp_path / "w2"
+    assert main(["study", str(study_file), "--out", str(out), "--workers", "2", "--no-progress"]) == 0
+    assert _records(out) == _records(reference)
+
+
+def test_sigkill_then_resume(study_file, reference, tmp_path):
+    out = tmp_path / "killed"
+    cmd = [sys.executable, "-m", "gripper.cli", "study", str(study_file), "--out", str(out), "--workers", "1",
+           "--no-progress"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    path = out / "results.jsonl"
+    deadline = time.time() + 120
+    while time.time() < deadline:
+        if path.exists() and path.read_text().count("\n") >= 2:
+            break
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    assert 2 <= path.read_text().count("\n") < 5
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    recs = _records(out)
+    assert [r["point"] for r in recs] == [0, 1, 2, 3, 4]  # every point exactly once
+    assert recs == _records(reference)
+
+
+@pytest.mark.parametrize("edit, key, line", [
+    (('"finger.hole_height"', '"finger.hole_hight"'), "finger.hole_hight", 7),
+    (("[0.010, 0.011, 0.013, 0.014]", "[0.010, -0.011]"), "finger.hole_height", 7),
+    (("[0.010, 0.011, 0.013, 0.014]", '["a", "b"]'), "finger.hole_height", 7),
+    (('design = "one_at_a_time"', 'design = "random"'), "design", 4),
+    (("trials = 1", "trials = 0"), "responses.grasp", 12),
+])
+def test_bad_study_is_refused_before_work(tmp_path, capsys, edit, key, line):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(STUDY.replace(*edit))
+    out = tmp_path / "out"
+    assert main(["study", str(bad), "--out", str(out), "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert f"bad.toml:{line}: {key}" in err and "\n" not in err
+    assert not out.exists()  # refused before any work started
+
+
+def test_bridge_rule_and_gent():
+    base = GripperParams()
+    p, reasons = apply_point(base, {"finger.bridge_thickness": 0.0015})
+    assert p.springs.stiffness[0] == pytest.approx(base.springs.stiffness[0] / 8)  # k ∝ t³
+    assert reasons
+    p, _ = apply_point(base, {"material.shore_a": 20.0})
+    assert p.material.youngs_modulus == pytest.approx(base.material.youngs_modulus)
+    assert gent_modulus(30.0) > gent_modulus(20.0)
+    p, reasons = apply_point(base, {"servo.spool_radius": 0.015})
+    assert reasons == [] and p.springs.stiffness == base.springs.stiffness
+
+
+def test_blocked_force_grows_with_shortening():
+    p = GripperParams()
+    assert 0.0 < blocked_tip_force(p, 0.05) < blocked_tip_force(p, 0.15)
+
+
+def test_example_studies_load():
+    for name in ("one_at_a_time", "latin_hypercube"):
+        s = load_study(f"models/studies/{name}.toml")
+        assert len(s.design_points()) > 5
