@@ -508,7 +508,8 @@ def write_plots(records: list[dict], study: Study, out: Path) -> list[Path]:
                     ax.plot(r["curves"]["r"], r["curves"]["bending_angle_deg"], label=f"{v:g}")
             ax.set_xlabel("cable shortening rate r [-]")
             ax.set_ylabel("bending angle [deg]")
-            ax.legend(title=key, fontsize=7, title_fontsize=7)
+            if len(series) <= 12:
+                ax.legend(title=key, fontsize=7, title_fontsize=7)
             ax.grid(alpha=0.3)
         fig.suptitle(f"{study.name}: {key}")
         fig.tight_layout()
