@@ -158,8 +158,8 @@ CYLINDER = GraspObject(
     damage_measure="peak total contact force [N]")
 
 # Paper box: a 40 × 40 × 60 mm box of ≈ 170 g/m² card (≈ 0.2 mm thick, in-plane modulus
-# ≈ 3 GPa; paperboard 2-6 GPa). MuJoCo's flexcomp box shell has an open top, so this is a box
-# with its lid open; 20 g total (card ≈ 3 g plus light contents, lumped on the shell's vertices).
+# ≈ 3 GPa; paperboard 2-6 GPa), lid closed; 20 g total (card ≈ 3 g plus light contents, lumped
+# on the shell's vertices).
 # Card yields at a bending strain of ≈ 0.3 % (paperboard's elastic limit 0.3-0.5 %), leaving a
 # crease. Damage = a permanent dent deeper than 2 mm (a dent a customer sees on a retail box),
 # measured after elastic spring-back (see grasp_metrics.permanent_dent).
@@ -352,8 +352,11 @@ def _add_balloon(spec, obj, pos, mass, friction) -> None:
     _flex_contact(flex, friction)
 
 
-# Paper box shell: 5 × 5 × 6 points (10 × 10 × 12 mm spacing), full dofs (bending plasticity
-# needs a non-interpolated 2D flex). 4 × 4 × 5 was too coarse to bend under a finger.
+# Paper box shell: a closed box surface with 5 × 5 × 6 points per edge direction (10 × 10 ×
+# 12 mm spacing), full dofs (bending plasticity needs a non-interpolated 2D flex). 4 × 4 × 5 was
+# too coarse to bend under a finger. The shell is closed (lid on, as a product box): MuJoCo's
+# flexcomp "box" shell is open at the top, and its free rim creased under light grasps (4 of 50
+# default trials dented 2.1-3.5 mm at 3-8 N), which a closed carton's top face prevents.
 PAPER_BOX_COUNT = (5, 5, 6)
 # Rayleigh damping time [s] of the card: damps the shell's high modes at the 1 ms step.
 PAPER_BOX_DAMPING = 0.001
@@ -361,13 +364,53 @@ PAPER_BOX_DAMPING = 0.001
 PAPER_POISSON = 0.3
 
 
+def box_shell(half: tuple[float, float, float], counts: tuple[int, int, int]):
+    """A closed, watertight triangle mesh of a box surface (half-extents [m]) whose faces are
+    grids of ``counts`` points along x, y, z, with outward normals (trimesh)."""
+    import numpy as np
+    import trimesh
+
+    verts: list = []
+    faces: list = []
+
+    def face(origin, u, v, nu, nv):
+        base = len(verts)
+        for j in range(nv):
+            for i in range(nu):
+                verts.append(origin + u * i / (nu - 1) + v * j / (nv - 1))
+        for j in range(nv - 1):
+            for i in range(nu - 1):
+                a = base + j * nu + i
+                faces.extend([[a, a + 1, a + nu + 1], [a, a + nu + 1, a + nu]])
+
+    hx, hy, hz = half
+    cx, cy, cz = counts
+    ex, ey, ez = np.eye(3)
+    lo = np.array([-hx, -hy, -hz])
+    face(lo, 2 * hx * ex, 2 * hy * ey, cx, cy)                          # bottom
+    face(np.array([-hx, -hy, hz]), 2 * hx * ex, 2 * hy * ey, cx, cy)    # top
+    face(lo, 2 * hx * ex, 2 * hz * ez, cx, cz)                          # y- side
+    face(np.array([-hx, hy, -hz]), 2 * hx * ex, 2 * hz * ez, cx, cz)    # y+ side
+    face(lo, 2 * hy * ey, 2 * hz * ez, cy, cz)                          # x- side
+    face(np.array([hx, -hy, -hz]), 2 * hy * ey, 2 * hz * ez, cy, cz)    # x+ side
+    mesh = trimesh.Trimesh(np.array(verts), np.array(faces), process=True)  # merges shared edges
+    trimesh.repair.fix_normals(mesh)
+    if not mesh.is_watertight:  # pragma: no cover - construction guarantees it
+        raise RuntimeError("paper box shell is not closed")
+    return mesh
+
+
 def _add_paper_box(spec, obj, pos, quat, mass, friction) -> None:
-    sx, sy, sz = (2.0 * s for s in obj.size)
-    c = PAPER_BOX_COUNT
-    flex = spec.worldbody.make_flex(
-        OBJECT_BODY, type="box", dim=2, dof="full", count=list(c),
-        spacing=[sx / (c[0] - 1), sy / (c[1] - 1), sz / (c[2] - 1)], radius=0.001, mass=mass,
-        inertiabox=0.002, pos=pos, quat=quat, elastic2d=3)
+    import tempfile
+
+    mesh = box_shell(obj.size, PAPER_BOX_COUNT)
+    # make_flex reads a mesh from a file; the shell is generated, written to a temporary OBJ
+    with tempfile.TemporaryDirectory() as tmp:
+        path = str(Path(tmp) / "paper_box_shell.obj")
+        mesh.export(path)
+        flex = spec.worldbody.make_flex(
+            OBJECT_BODY, type="mesh", file=path, dim=2, dof="full", radius=0.001, mass=mass,
+            inertiabox=0.002, pos=pos, quat=quat, elastic2d=3)
     flex.young = obj.youngs_modulus
     flex.poisson = PAPER_POISSON
     flex.thickness = obj.thickness
