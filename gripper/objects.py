@@ -387,16 +387,16 @@ def box_shell(half: tuple[float, float, float], counts: tuple[int, int, int]):
     cx, cy, cz = counts
     ex, ey, ez = np.eye(3)
     lo = np.array([-hx, -hy, -hz])
-    face(lo, 2 * hx * ex, 2 * hy * ey, cx, cy)                          # bottom
-    face(np.array([-hx, -hy, hz]), 2 * hx * ex, 2 * hy * ey, cx, cy)    # top
+    # (u, v) ordered so that u × v points out of the box: every triangle winds outwards
+    face(lo, 2 * hy * ey, 2 * hx * ex, cy, cx)                          # bottom (-z)
+    face(np.array([-hx, -hy, hz]), 2 * hx * ex, 2 * hy * ey, cx, cy)    # top (+z)
     face(lo, 2 * hx * ex, 2 * hz * ez, cx, cz)                          # y- side
-    face(np.array([-hx, hy, -hz]), 2 * hx * ex, 2 * hz * ez, cx, cz)    # y+ side
-    face(lo, 2 * hy * ey, 2 * hz * ez, cy, cz)                          # x- side
+    face(np.array([-hx, hy, -hz]), 2 * hz * ez, 2 * hx * ex, cz, cx)    # y+ side
+    face(lo, 2 * hz * ez, 2 * hy * ey, cz, cy)                          # x- side
     face(np.array([hx, -hy, -hz]), 2 * hy * ey, 2 * hz * ez, cy, cz)    # x+ side
     mesh = trimesh.Trimesh(np.array(verts), np.array(faces), process=True)  # merges shared edges
-    trimesh.repair.fix_normals(mesh)
-    if not mesh.is_watertight:  # pragma: no cover - construction guarantees it
-        raise RuntimeError("paper box shell is not closed")
+    if not (mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0):  # pragma: no cover
+        raise RuntimeError("paper box shell is not a closed, outward-wound surface")
     return mesh
 
 

@@ -6,7 +6,7 @@ import pytest
 import trimesh
 
 from gripper.bench import wilson_interval
-from gripper.objects import DEFAULT_OBJECTS, LIBRARY, get_object, mesh_object
+from gripper.objects import DEFAULT_OBJECTS, LIBRARY, Placement, get_object, mesh_object
 from gripper.params import GripperParams
 
 
@@ -61,3 +61,13 @@ def test_wilson_interval_known_values():
     assert lo == pytest.approx(0.4902, abs=1e-4) and hi == pytest.approx(0.9433, abs=1e-4)
     lo, hi = wilson_interval(50, 50)
     assert hi == pytest.approx(1.0) and lo == pytest.approx(0.9287, abs=1e-4)
+
+
+def test_paper_box_shell_is_closed_and_compiles():
+    from gripper.objects import PAPER_BOX_COUNT, box_shell
+    from gripper.trial import build_grasp_scene
+    obj = get_object("paper_box")
+    mesh = box_shell(obj.size, PAPER_BOX_COUNT)
+    assert mesh.is_watertight and mesh.volume == pytest.approx(8 * obj.size[0] * obj.size[1] * obj.size[2])
+    m = build_grasp_scene(GripperParams(), obj, Placement())
+    assert m.nflex == 1 and m.flex_vertnum[0] == len(mesh.vertices)
