@@ -47,6 +47,23 @@ def make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, acti
     ).validate()
 
 
+def env_arguments(**kwargs) -> dict:
+    """Bind keyword arguments to :class:`SoftGripperGraspEnv`'s signature (its defaults, and a
+    clear error for an unknown one); return them with the validated ``config``."""
+    import inspect
+
+    sig = inspect.signature(SoftGripperGraspEnv.__init__)
+    try:
+        bound = sig.bind(None, **kwargs)
+    except TypeError as e:
+        raise ValueError(f"SoftGripperGrasp-v0: {e}") from None
+    bound.apply_defaults()
+    a = dict(bound.arguments)
+    a.pop("self")
+    a["config"] = make_config(**{k: a[k] for k in inspect.signature(make_config).parameters})
+    return a
+
+
 def check_render_args(render_mode, width, height, camera) -> None:
     if render_mode is not None and render_mode not in RENDER_MODES:
         raise ValueError(f"render_mode: must be one of {RENDER_MODES} or None, got {render_mode!r}")

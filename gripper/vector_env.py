@@ -28,7 +28,7 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from gripper.env import RENDER_MODES, check_action, check_render_args, make_config
+from gripper.env import RENDER_MODES, check_action, check_render_args, env_arguments
 from gripper.env_core import (
     BatchStepper,
     SceneSet,
@@ -51,19 +51,14 @@ class SoftGripperGraspVectorEnv(VectorEnv):
     metadata = {"render_modes": RENDER_MODES, "render_fps": 50, "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(self, num_envs: int = 1, max_episode_steps: int | None = 300, nthread: int | None = None,
-                 objects=("block", "cylinder"), pose_noise: float = 0.010, yaw_noise: bool = True,
-                 mass_noise: float = 0.0, friction_noise: float = 0.0, action_mode: str = "fingers",
-                 xy_actions: bool = False, frame_skip: int = 10, reward_type: str = "dense",
-                 reward_weights: dict | None = None, terminate_on_success: bool = True,
-                 success_hold_s: float = 1.0, params: Any = None, render_mode: str | None = None,
-                 width: int = 640, height: int = 480, camera: str = "front"):
+                 **env_kwargs: Any):
         if not isinstance(num_envs, int) or num_envs < 1:
             raise ValueError(f"num_envs: must be an integer >= 1, got {num_envs!r}")
         if max_episode_steps is not None and (not isinstance(max_episode_steps, int) or max_episode_steps < 1):
             raise ValueError(f"max_episode_steps: must be an integer >= 1 or None, got {max_episode_steps!r}")
-        self.config = make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode,
-                                  xy_actions, frame_skip, reward_type, reward_weights, terminate_on_success,
-                                  success_hold_s, params)
+        args = env_arguments(**env_kwargs)  # the single env's arguments and defaults
+        self.config = args["config"]
+        render_mode, width, height, camera = (args[k] for k in ("render_mode", "width", "height", "camera"))
         check_render_args(render_mode, width, height, camera)
         self.num_envs = num_envs
         self.max_episode_steps = max_episode_steps

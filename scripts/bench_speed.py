@@ -1,5 +1,6 @@
 """Speed figures (medians of several runs): the 2 s bending test, and the 4-finger gripper with
-a rigid block (scripted descend-close-lift, 3 s simulated) on one core.
+a rigid block (scripted descend-close-lift, 3 s simulated) on one core, at the model's default
+1 ms step and at the grasp trials' 2 ms step (discrete integrator, see GraspProtocol.timestep).
 
 Run: .venv/bin/python scripts/bench_speed.py [--repeats 5]
 """
@@ -13,10 +14,14 @@ import mujoco
 from gripper.bending import BendingConfig, run_bending_test
 from gripper.model import build_scene_spec
 from gripper.params import GripperParams
+from gripper.protocol import GraspProtocol
 
 
-def grasp_rollout(p: GripperParams, sim_time: float = 3.0) -> float:
-    m = build_scene_spec(p).compile()
+def grasp_rollout(p: GripperParams, sim_time: float = 3.0, discrete: bool = False) -> float:
+    spec = build_scene_spec(p)
+    if discrete:  # as the grasp trials build it (gripper.trial.build_grasp_scene)
+        spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
+    m = spec.compile()
     d = mujoco.MjData(m)
     lift = m.actuator("lift_z").id
     t0 = time.perf_counter()
@@ -37,8 +42,13 @@ def main() -> None:
           f"(runs: {', '.join(f'{x:.4f}' for x in bend)})")
     p = GripperParams()
     rt = [grasp_rollout(p) for _ in range(args.repeats)]
-    print(f"4-finger gripper + rigid block, dt {p.sim.timestep:g} s: median "
+    print(f"4-finger gripper + rigid block, model default dt {p.sim.timestep:g} s: median "
           f"{statistics.median(rt):.1f}x real time (runs: {', '.join(f'{x:.1f}' for x in rt)})")
+    dt = GraspProtocol().timestep
+    p2 = p.replace(sim=p.sim.replace(timestep=dt))
+    rt2 = [grasp_rollout(p2, discrete=True) for _ in range(args.repeats)]
+    print(f"4-finger gripper + rigid block, grasp-trial dt {dt:g} s (discrete integrator): median "
+          f"{statistics.median(rt2):.1f}x real time (runs: {', '.join(f'{x:.1f}' for x in rt2)})")
 
 
 if __name__ == "__main__":

@@ -2,13 +2,12 @@
 and a SIGKILL in the middle of a run."""
 
 import json
-import os
-import signal
 import subprocess
 import sys
 import time
 
 import pytest
+from helpers import kill_after_lines
 
 from gripper.cli import main
 
@@ -94,17 +93,7 @@ def test_two_workers_give_the_same_records(reference, tmp_path):
 def test_sigkill_then_resume_equals_uninterrupted(reference, tmp_path):
     out = tmp_path / "killed"
     cmd = [sys.executable, "-m", "gripper.cli", *BASE, "--trials", "4", "--workers", "1", "--out", str(out)]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            start_new_session=True)
-    path = out / "trials.jsonl"
-    deadline = time.time() + 120
-    while time.time() < deadline:
-        if path.exists() and path.read_text().count("\n") >= 2:
-            break
-        time.sleep(0.05)
-    os.killpg(proc.pid, signal.SIGKILL)
-    proc.wait()
-    n_before = path.read_text().count("\n")
+    n_before = kill_after_lines(cmd, out / "trials.jsonl", 2)
     assert 2 <= n_before < 4
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     recs = _lines(out)

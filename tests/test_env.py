@@ -7,6 +7,7 @@ import warnings
 import gymnasium as gym
 import numpy as np
 import pytest
+from conftest import needs_gl
 from gymnasium.utils.env_checker import check_env
 
 import gripper  # noqa: F401  (registers the environment)
@@ -157,6 +158,7 @@ def test_bad_actions():
         env.step(np.full(5, np.nan))
 
 
+@needs_gl
 def test_rgb_and_depth_rendering():
     env = SoftGripperGraspEnv(objects="block", render_mode="rgb_array", width=160, height=120)
     env.reset(seed=0)

@@ -1,13 +1,11 @@
 """Design studies: workers, resume after SIGKILL, refusal of bad study files, responses."""
 
 import json
-import os
-import signal
 import subprocess
 import sys
-import time
 
 import pytest
+from helpers import kill_after_lines
 
 from gripper.cli import main
 from gripper.params import GripperParams
@@ -73,16 +71,7 @@ def test_sigkill_then_resume(study_file, reference, tmp_path):
     out = tmp_path / "killed"
     cmd = [sys.executable, "-m", "gripper.cli", "study", str(study_file), "--out", str(out), "--workers", "1",
            "--no-progress"]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
-    path = out / "results.jsonl"
-    deadline = time.time() + 120
-    while time.time() < deadline:
-        if path.exists() and path.read_text().count("\n") >= 2:
-            break
-        time.sleep(0.05)
-    os.killpg(proc.pid, signal.SIGKILL)
-    proc.wait()
-    assert 2 <= path.read_text().count("\n") < 5
+    assert 2 <= kill_after_lines(cmd, out / "results.jsonl", 2) < 5
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     recs = _records(out)
     assert [r["point"] for r in recs] == [0, 1, 2, 3, 4]  # every point exactly once

@@ -9,9 +9,12 @@ import mediapy
 import mujoco
 import numpy as np
 import pytest
+from conftest import needs_gl
 
 from gripper.protocol import GraspProtocol
 from gripper.video import FrameRecorder, record_trial_video, render_frames
+
+pytestmark = needs_gl
 
 # A short trial: every phase present, 2.4 s of simulated time instead of 7.
 SHORT = GraspProtocol(settle_s=0.1, close_hold_s=0.1, lift_height=0.02, lift_settle_s=0.05, hold_s=0.1,
