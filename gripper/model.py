@@ -108,12 +108,11 @@ def _add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.Mjs
     hinge.joint.axis = [0, -1, 0]  # positive angle closes the cut (curls towards +z)
     hinge.joint.limited = mujoco.mjtLimited.mjLIMITED_TRUE
     # Closed cut = silicone face on silicone face, far stiffer than the bridge: a stiff limit
-    # (time constant four steps, impedance 0.9998), so the cable cannot pull a hinge past its
-    # closure (0.18° overrun at the full stall tension, 54 N). Two steps, MuJoCo's floor, and
-    # impedance 0.9999 diverged in the smoke test (random commands, 2-6 fingers of 3-12
-    # elements, two seeds each); 0.999 let a hinge overrun 0.64° at stall.
+    # (time constant four steps, impedance 0.999), so the cable cannot pull a hinge past its
+    # closure (< 0.5° overrun up to half the stall tension, 0.64° at stall). Two steps,
+    # MuJoCo's floor, diverged in the smoke test with 12-element fingers curled on themselves.
     hinge.joint.solref_limit = [4.0 * p.sim.timestep, 1.0]
-    hinge.joint.solimp_limit = [0.9998, 0.9998, 0.001, 0.5, 2.0]
+    hinge.joint.solimp_limit = [0.9999, 0.9999, 0.001, 0.5, 2.0]
     pad = spec.add_default("pad", root)
     pad.site.type = mujoco.mjtGeom.mjGEOM_BOX
     pad.site.group = 4
