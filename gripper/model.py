@@ -112,7 +112,7 @@ def _add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.Mjs
     # closure (< 0.5° overrun up to half the stall tension, 0.64° at stall). Two steps,
     # MuJoCo's floor, diverged in the smoke test with 12-element fingers curled on themselves.
     hinge.joint.solref_limit = [4.0 * p.sim.timestep, 1.0]
-    hinge.joint.solimp_limit = [0.9999, 0.9999, 0.001, 0.5, 2.0]
+    hinge.joint.solimp_limit = [0.999, 0.999, 0.001, 0.5, 2.0]
     pad = spec.add_default("pad", root)
     pad.site.type = mujoco.mjtGeom.mjGEOM_BOX
     pad.site.group = 4
