@@ -24,7 +24,7 @@ from gripper.trial import run_pullout, run_trial
 __all__ = ["GripperParams", "build_gripper_spec", "build_scene_spec", "build_bending_spec",
            "GraspObject", "Placement", "get_object", "mesh_object", "GraspProtocol", "TrialNoise",
            "run_trial", "run_pullout", "BenchConfig", "run_benchmark", "wilson_interval"]
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 
 def _register_envs() -> None:

@@ -77,10 +77,13 @@ class BenchConfig:
         return self
 
     def identity(self) -> dict:
-        """Everything that decides a trial's outcome (not the trial count or object list)."""
+        """Everything that decides a trial's outcome (not the trial count or object list),
+        including the gripper and MuJoCo versions: a new version models objects differently,
+        so its records must not be mixed into an old run's folder."""
         return {"params": self.params.to_dict(), "protocol": self.protocol.to_dict(),
                 "noise": self.noise.to_dict(), "seed": self.seed,
-                "objects": {o: get_object(o).to_dict() for o in self.objects}}
+                "objects": {o: get_object(o).to_dict() for o in self.objects},
+                "versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")}}
 
     def hash(self) -> str:
         return config_hash(self.identity())

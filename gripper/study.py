@@ -120,7 +120,10 @@ class Study:
         return pts
 
     def identity(self) -> dict:
-        return {"name": self.name, "base": self.base.to_dict(), "design": self.design, "vary": self.vary,
+        from gripper.trial import versions
+
+        return {"versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")},
+                "name": self.name, "base": self.base.to_dict(), "design": self.design, "vary": self.vary,
                 "responses": self.responses, "objective": self.objective, "points": self.points,
                 "seed": self.seed}
 
