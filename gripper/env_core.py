@@ -15,6 +15,7 @@ Example:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -100,8 +101,8 @@ class EnvConfig:
                 raise ValueError(f"reward_weights.{k}: must be a finite number, got {v!r}")
         for name in ("success_hold_s", "success_height", "max_slip"):
             v = getattr(self, name)
-            if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
-                raise ValueError(f"{name}: must be a finite number >= 0, got {v!r}")
+            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+                raise ValueError(f"{name}: must be a finite number > 0, got {v!r}")
         if self.xy_actions and not self.params.lift.xy_enabled:
             raise ValueError("xy_actions: needs params.lift.xy_enabled = true")
         self.params.validate()
@@ -120,7 +121,9 @@ class EnvConfig:
     def control_period(self) -> float:
         return self.frame_skip * ENV_TIMESTEP
 
+    @functools.cached_property
     def weights(self) -> dict:
+        """The reward weights in effect (defaults overridden by ``reward_weights``)."""
         return {**DEFAULT_REWARD_WEIGHTS, **self.reward_weights}
 
     def replace(self, **changes) -> EnvConfig:
@@ -310,10 +313,10 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     obj_pos = s.probe.object_pos(d)
     height = float(obj_pos[2] - ep.start_pos[2])
     rel = obs[struct["object_pos_rel_palm"][0]:struct["object_pos_rel_palm"][0] + 3]
-    grasp_point = np.array([0.0, 0.0, -0.5 * s.params.finger.length])
-    reach = float(np.linalg.norm(rel - grasp_point))
+    # scalar math on 3-vectors: numpy's per-call cost dominates at this size
+    reach = math.dist(rel, (0.0, 0.0, -0.5 * s.params.finger.length))  # to the grasp point
     pads = sens[s.pads].reshape(cfg.n_fingers, -1).sum(axis=1)
-    touching = float(np.mean(pads > 0.05))  # 0.05 N: above the touch sensors' numerical noise
+    touching = float(np.count_nonzero(pads > 0.05)) / cfg.n_fingers  # 0.05 N: above sensor noise
     # damage: the object's own criterion where it can be read at every step
     if s.obj.kind in ("balloon", "bag"):
         ep.peak_strain = max(ep.peak_strain, s.probe.edge_strain(d))
@@ -330,24 +333,24 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     ep.damaged = ep.damaged or newly_damaged
     # held: lifted past the success height and not slipping relative to the palm
     if height >= cfg.success_height and not ep.damaged:
-        if ep.hold_ref is None or np.linalg.norm(rel - ep.hold_ref) >= cfg.max_slip:
+        if ep.hold_ref is None or math.dist(rel, ep.hold_ref) >= cfg.max_slip:
             ep.hold_ref, ep.hold_steps = rel.copy(), 0
         ep.hold_steps += 1
     else:
         ep.hold_ref, ep.hold_steps = None, 0
     held_s = ep.hold_steps * cfg.control_period
     is_success = held_s >= cfg.success_hold_s - 1e-9
-    w = cfg.weights()
+    w = cfg.weights
     terms = {
         "reward_reach": -w["reach"] * reach,
         "reward_contact": w["contact"] * touching,
-        "reward_lift": w["lift"] * float(np.clip(height / cfg.success_height, 0.0, 1.0)),
+        "reward_lift": w["lift"] * min(1.0, max(0.0, height / cfg.success_height)),
         "reward_success": w["success"] * float(is_success),
         "reward_damage": -w["damage"] * float(newly_damaged),
-        "reward_action": -w["action"] * float(np.sum(np.square(action))),
+        "reward_action": -w["action"] * float(action @ action),
     }
     reward = float(sum(terms.values())) if cfg.reward_type == "dense" else float(is_success)
-    out_of_workspace = bool(np.hypot(obj_pos[0], obj_pos[1]) > WORKSPACE_RADIUS or obj_pos[2] < WORKSPACE_FLOOR)
+    out_of_workspace = bool(math.hypot(obj_pos[0], obj_pos[1]) > WORKSPACE_RADIUS or obj_pos[2] < WORKSPACE_FLOOR)
     terminated = out_of_workspace or ep.damaged or (cfg.terminate_on_success and is_success)
     info = {**terms, "is_success": bool(is_success), "object": s.obj.name, "object_height_m": height,
             "held_s": held_s, "damaged": ep.damaged, "damage_measure": measure,

@@ -116,12 +116,11 @@ class SoftGripperGraspVectorEnv(VectorEnv):
         rewards = np.zeros(n)
         terminated = np.zeros(n, dtype=bool)
         truncated = np.zeros(n, dtype=bool)
-        infos: dict = {}
+        per_env: list = [None] * n
         live = [i for i in range(n) if not self._autoreset[i]]
         for i in range(n):
             if self._autoreset[i]:
-                obs[i], info = self._reset_slot(i)
-                infos = self._add_info(infos, info, i)
+                obs[i], per_env[i] = self._reset_slot(i)
         results = self._stepper.step([self._eps[i] for i in live],
                                      [self._eps[i].scene.controls(actions[i]) for i in live])
         for i, (sens, err) in zip(live, results, strict=True):
@@ -136,9 +135,30 @@ class SoftGripperGraspVectorEnv(VectorEnv):
                                                            self.observation_structure)
             truncated[i] = (not terminated[i] and self.max_episode_steps is not None
                             and ep.steps >= self.max_episode_steps)
-            infos = self._add_info(infos, info, i)
+            per_env[i] = info
         self._autoreset = terminated | truncated
-        return obs, rewards, terminated, truncated, infos
+        return obs, rewards, terminated, truncated, self._merge_infos(per_env)
+
+    def _merge_infos(self, per_env: list) -> dict:
+        """Gymnasium's vector info layout (``info[k]`` array, ``info["_k"]`` mask), built one key
+        at a time instead of one env at a time; dict values go through ``_add_info``."""
+        n = self.num_envs
+        out: dict = {}
+        keys = dict.fromkeys(k for d in per_env if d for k in d)
+        for k in keys:
+            mask = np.array([d is not None and k in d for d in per_env])
+            vals = [d[k] for d, m in zip(per_env, mask, strict=True) if m]
+            if isinstance(vals[0], dict):
+                for i, d in enumerate(per_env):
+                    if d is not None and k in d:
+                        out = self._add_info(out, {k: d[k]}, i)
+                continue
+            dtype = bool if isinstance(vals[0], bool | np.bool_) else (
+                np.float64 if isinstance(vals[0], int | float | np.number) else object)
+            arr = np.zeros(n, dtype=dtype) if dtype is not object else np.full(n, None, dtype=object)
+            arr[mask] = vals
+            out[k], out["_" + k] = arr, mask
+        return out
 
     def render(self):
         if self.render_mode is None or self._eps[0] is None:
