@@ -22,6 +22,7 @@ grasp = { objects = ["block"], trials = 5 }  # success rate and peak contact for
 
 [objective]
 maximize = "bending_angle_max_deg"         # or minimize = "...", used for recommendations
+at_least = { grasp_block_success_rate = 1.0 }   # optional limits a recommended point must meet
 ```
 
 Every design point is a complete, reproducible run built from parameters only (a pure function
@@ -91,6 +92,7 @@ class Study:
     vary: dict
     responses: dict
     objective: tuple[str, str] | None = None
+    limits: tuple = ()  # ("at_least" | "at_most", metric, value): points a recommendation may use
     points: int = 0
     seed: int = 0
     source: str = ""
@@ -124,7 +126,8 @@ class Study:
 
         return {"versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")},
                 "name": self.name, "base": self.base.to_dict(), "design": self.design, "vary": self.vary,
-                "responses": self.responses, "objective": self.objective, "points": self.points,
+                "responses": self.responses, "objective": self.objective, "limits": self.limits,
+                "points": self.points,
                 "seed": self.seed}
 
     def hash(self) -> str:
@@ -271,14 +274,25 @@ def load_study(path: str | Path) -> Study:
                     except ValueError as e:
                         raise err("responses." + name, str(e)) from None
     objective = None
-    obj = data.get("objective", {})
+    obj = dict(data.get("objective", {}))
+    limits: dict = {}
+    for bound in ("at_least", "at_most"):
+        table = obj.pop(bound, {})
+        if not isinstance(table, dict):
+            raise err(bound, "must be a table of metric = number, e.g. { grasp_block_success_rate = 1.0 }")
+        for k, v in table.items():
+            if k not in metric_names(responses) or not (isinstance(v, int | float) and not isinstance(v, bool)):
+                raise err(bound, f"{k} = {v!r}: need a metric of the responses ({', '.join(metric_names(responses))}) "
+                                 "and a number")
+            limits[(bound, k)] = float(v)
     if obj:
         if len(obj) != 1 or next(iter(obj)) not in ("maximize", "minimize"):
             raise err("objective", "give exactly one of maximize = \"...\" or minimize = \"...\"")
         sense, metric = next(iter(obj.items()))
         objective = (sense, str(metric))
     study = Study(name=str(st.get("name", path.stem)), base=base, design=design, vary=vary, responses=responses,
-                  objective=objective, points=points, seed=seed, source=str(path))
+                  objective=objective, points=points, seed=seed, source=str(path),
+                  limits=tuple((b, k, v) for (b, k), v in limits.items()))
     for pt in study.design_points():  # every point must build before any work starts
         try:
             apply_point(base, pt)
@@ -527,21 +541,33 @@ def recommendations(records: list[dict], study: Study) -> str:
     """Markdown table: per varied parameter, the value that best meets the objective, and why."""
     names = metric_names(study.responses)
     sense, metric = study.objective or ("maximize", names[0])
+    def admissible(r) -> bool:
+        for bound, k, v in study.limits:
+            x = r["metrics"].get(k)
+            if x is None or (x < v if bound == "at_least" else x > v):
+                return False
+        return True
+
+    rule = "".join(f"; only points with {k} {'>=' if b == 'at_least' else '<='} {v:g}" for b, k, v in study.limits)
     lines = [f"# {study.name}: recommendations", "",
-             f"Objective: {sense} `{metric}`. One-at-a-time: each parameter moves alone from the base design; "
-             "other designs: the best point overall per parameter.", "",
+             f"Objective: {sense} `{metric}`{rule}. One-at-a-time: each parameter moves alone from the base "
+             "design; other designs: the best point overall per parameter.", "",
              "| parameter | recommended value | reason from the data | calibrated |", "|---|---|---|---|"]
     base = next((r for r in records if r["point"] == 0 and r["status"] == "ok"), None)
     base_val = base["metrics"].get(metric) if base else None
     for key in study.vary:
-        series = [(v, r) for v, r in _series(records, study, key) if r["metrics"].get(metric) is not None]
+        given = [(v, r) for v, r in _series(records, study, key) if r["metrics"].get(metric) is not None]
+        series = [(v, r) for v, r in given if admissible(r)]
         if not series:
-            lines.append(f"| {key} | - | no point gave `{metric}` | - |")
+            lines.append(f"| {key} | - | no point gave `{metric}` within the limits | - |")
             continue
         pick = (max if sense == "maximize" else min)(series, key=lambda vr: vr[1]["metrics"][metric])
         vals = [r["metrics"][metric] for _, r in series]
         reason = (f"{metric} = {pick[1]['metrics'][metric]:.4g} (range {min(vals):.4g} to {max(vals):.4g} over "
                   f"{len(series)} points" + (f"; base {base_val:.4g})" if base_val is not None else ")"))
+        excluded = [v for v, r in given if not admissible(r)]
+        if excluded:
+            reason += f"; {', '.join(f'{v:g}' for v in excluded)} excluded by the limits"
         failed = sum(1 for r in records if r["status"] != "ok" and key in r["changes"])
         if failed:
             reason += f"; {failed} point(s) failed"

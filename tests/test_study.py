@@ -116,3 +116,20 @@ def test_example_studies_load():
     for name in ("one_at_a_time", "latin_hypercube"):
         s = load_study(f"models/studies/{name}.toml")
         assert len(s.design_points()) > 5
+
+
+def test_limits_exclude_points_from_recommendations(tmp_path):
+    from gripper.study import recommendations
+    f = tmp_path / "s.toml"
+    f.write_text(STUDY + "at_least = { grasp_block_success_rate = 1.0 }\n")
+    study = load_study(f)
+
+    def rec(i, h, tension, success):
+        return {"point": i, "status": "ok", "calibrated": False, "calibration_note": "",
+                "changes": {} if h is None else {"finger.hole_height": h},
+                "metrics": {"tension_for_angle_N": tension, "grasp_block_success_rate": success}}
+    md = recommendations([rec(0, None, 3.0, 1.0), rec(1, 0.010, 1.0, 0.0), rec(2, 0.014, 2.0, 1.0)], study)
+    assert "| finger.hole_height | 0.014 |" in md and "0.01 excluded by the limits" in md
+    f.write_text(STUDY + "at_least = { grasp_sphere_success_rate = 1.0 }\n")
+    with pytest.raises(ValueError, match="at_least"):
+        load_study(f)
