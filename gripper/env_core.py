@@ -415,7 +415,7 @@ class BatchStepper:
             culprits = set()
             if warned:
                 for j, i in enumerate(idx):
-                    if self._run([eps[i]], [ctrls[i]], datas[:1])[2]:
+                    if self._run([eps[i]], [ctrls[i]], datas)[2]:  # the pool needs one data per thread
                         culprits.add(j)
             for j, i in enumerate(idx):
                 err = None

@@ -196,3 +196,13 @@ def test_vector_env_with_deformable_and_rigid_objects():
         vobs, *_ = venv.step(act)
         for i, e in enumerate(singles):
             assert np.array_equal(e.step(act[i])[0], vobs[i])
+
+
+def test_vector_env_finds_the_unstable_slot():
+    """A warning in the batched rollout is traced back to the slot that raised it (replay)."""
+    venv = gym.make_vec(ENV_ID, num_envs=3, vectorization_mode="vector_entry_point", nthread=2, objects="block")
+    venv.reset(seed=0)
+    venv.unwrapped._eps[1].data.qvel[:] = 1e12  # slot 1 diverges
+    _, reward, terminated, _, info = venv.step(np.zeros((3, 5)))
+    assert list(terminated) == [False, True, False]
+    assert list(info["unstable"]) == [False, True, False] and reward[1] == 0.0
