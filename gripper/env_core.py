@@ -368,10 +368,11 @@ class BatchStepper:
     """Steps several episodes one control period each with one ``mujoco.rollout`` call per group
     of scenes with the same sizes, on MuJoCo's thread pool (``nthread`` threads; 0: this thread).
 
-    Instability: a non-finite final state, or a MuJoCo warning. Warnings are counted in the
-    rollout's per-thread scratch data, which do not say which episode raised them, so when any
-    appears, the batch's episodes are replayed one by one (deterministic: same state, same zero
-    warm start) to find the culprits.
+    Instability: a non-finite final state, a clock that did not advance by the control period
+    (MuJoCo resets a diverging simulation after its warning), or a MuJoCo warning. Warnings are
+    counted in the rollout's per-thread scratch data, which do not say which episode raised them,
+    so when one appears without a reset clock, the batch's episodes are replayed one by one
+    (deterministic: same state, same zero warm start) to find the culprits.
     """
 
     def __init__(self, nthread: int = 0):
@@ -400,7 +401,11 @@ class BatchStepper:
                           skip_checks=True, nstep=k, initial_warmstart=warm, state=state,
                           sensordata=sens, chunk_size=1)
         warned = any(int(d.warning.number.sum()) for d in datas)
-        return state[:, -1], sens[:, -1], warned
+        # MuJoCo resets a diverging simulation (time back to 0) after its warning: the clock
+        # tells, per episode, even where the per-thread warning counters cannot
+        dt = eps[0].scene.model.opt.timestep
+        reset = np.abs(state[:, -1, 0] - (s0[:, 0] + k * dt)) > 0.5 * dt
+        return state[:, -1], sens[:, -1], warned, reset
 
     def step(self, eps: list[EpisodeState], ctrls: list[np.ndarray]) -> list[tuple[np.ndarray, str | None]]:
         """Advance each episode one control period; return (last sensor row, error or None)."""
@@ -411,9 +416,9 @@ class BatchStepper:
         for idx in groups.values():
             batch = [eps[i] for i in idx]
             datas = self._datas(batch[0].scene)
-            final, sens, warned = self._run(batch, [ctrls[i] for i in idx], datas)
-            culprits = set()
-            if warned:
+            final, sens, warned, reset = self._run(batch, [ctrls[i] for i in idx], datas)
+            culprits = {j for j in range(len(idx)) if reset[j]}
+            if warned and not culprits:
                 for j, i in enumerate(idx):
                     if self._run([eps[i]], [ctrls[i]], datas)[2]:  # the pool needs one data per thread
                         culprits.add(j)
