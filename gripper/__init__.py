@@ -5,6 +5,12 @@ Example:
     >>> rec = run_trial("block", seed=0, index=0, params=GripperParams())   # doctest: +SKIP
     >>> rec["success"], rec["peak_cable_tension_N"]                         # doctest: +SKIP
 
+Video, pictures and design studies:
+
+    >>> from gripper import record_trial_video, load_study, run_study               # doctest: +SKIP
+    >>> record_trial_video("balloon", "balloon.mp4", camera="track")               # doctest: +SKIP
+    >>> run_study(load_study("models/studies/one_at_a_time.toml"), "runs/oat")      # doctest: +SKIP
+
 The Gymnasium environment ``SoftGripperGrasp-v0`` is registered on import:
 
     >>> import gymnasium as gym
@@ -15,15 +21,21 @@ from gripper.render import choose_gl_backend
 choose_gl_backend()  # before anything imports mujoco: headless EGL unless MUJOCO_GL is set
 
 from gripper.bench import BenchConfig, run_benchmark, wilson_interval
+from gripper.env import SoftGripperGraspEnv
+from gripper.figures import bending_figure, success_plot
 from gripper.model import build_bending_spec, build_gripper_spec, build_scene_spec
 from gripper.objects import GraspObject, Placement, get_object, mesh_object
 from gripper.params import GripperParams
 from gripper.protocol import GraspProtocol, TrialNoise
+from gripper.study import load_study, run_study
 from gripper.trial import run_pullout, run_trial
+from gripper.video import record_trial_video
 
 __all__ = ["GripperParams", "build_gripper_spec", "build_scene_spec", "build_bending_spec",
            "GraspObject", "Placement", "get_object", "mesh_object", "GraspProtocol", "TrialNoise",
-           "run_trial", "run_pullout", "BenchConfig", "run_benchmark", "wilson_interval"]
+           "run_trial", "run_pullout", "BenchConfig", "run_benchmark", "wilson_interval",
+           "SoftGripperGraspEnv", "record_trial_video", "bending_figure", "success_plot", "load_study",
+           "run_study"]
 __version__ = "0.2.0"
 
 
