@@ -109,6 +109,10 @@ class SoftGripperGraspEnv(gym.Env):
 
     ``env.unwrapped.lift_action(height)``, ``servo_action(angle)`` and ``xy_action(offset)`` give
     the action value for a palm height [m], a spool angle [rad] or a palm x/y offset [m].
+    Within a control period the palm set-points ramp linearly from the previous action's value
+    to the new one (first-order hold, as a stage's trajectory generator; a step would jerk the
+    stiff stage), while the servo set-points are held (zero-order hold, as a hobby servo's 50 Hz
+    PWM command).
     The servos slew their set-point at the contraction speed (the servo's no-load speed), so a
     jump in the action is followed at the speed the hardware allows.
 

@@ -168,6 +168,7 @@ class Scene:
         self.servo = self.probe.servo
         self.spool = p.servo.spool_radius
         self.act_lift = {a: m.actuator(a).id for a in self.lift_q}
+        self.lift_act_ids = np.array(list(self.act_lift.values()))
         self.home = p.lift.home_height
         self.z_min = p.finger.length + TIP_FLOOR_CLEARANCE - self.home
         self.z_start = obj.height + p.finger.length + START_CLEARANCE - self.home
@@ -391,7 +392,15 @@ class BatchStepper:
     def _run(self, eps, ctrls, datas):
         n, k = len(eps), eps[0].scene.cfg.frame_skip
         s0 = np.stack([state_vector(ep) for ep in eps])
-        u = np.ascontiguousarray(np.repeat(np.stack(ctrls)[:, None, :], k, axis=1))
+        u = np.repeat(np.stack(ctrls)[:, None, :], k, axis=1)
+        # palm stages: first-order hold, the set-point ramps from the last one to the new one over
+        # the control period (a stage's trajectory generator); a jump would jerk the stiff stage
+        ramp = (np.arange(1, k + 1) / k)[None, :, None]
+        for j, ep in enumerate(eps):
+            lift = ep.scene.lift_act_ids
+            prev = ep.data.ctrl[lift]
+            u[j, :, lift] = (prev[None, :] + ramp[0] * (ctrls[j][lift] - prev)[None, :]).T
+        u = np.ascontiguousarray(u)
         warm = np.zeros((n, eps[0].scene.model.nv))
         state = np.empty((n, k, s0.shape[1]))
         sens = np.empty((n, k, eps[0].scene.model.nsensordata))
