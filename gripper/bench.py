@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gripper.execution import read_jsonl, run_ordered
+from gripper.execution import claim_run_dir, read_jsonl, run_ordered
 from gripper.objects import DEFAULT_OBJECTS, get_object
 from gripper.params import GripperParams
 from gripper.protocol import GraspProtocol, TrialNoise
@@ -108,26 +108,6 @@ def read_trials(path: Path) -> list[dict]:
     return read_jsonl(path)
 
 
-def _prepare_dir(out: Path, cfg: BenchConfig) -> None:
-    out.mkdir(parents=True, exist_ok=True)
-    cfile = out / "config.json"
-    h = cfg.hash()
-    if cfile.exists():
-        try:
-            old = json.loads(cfile.read_text())
-        except json.JSONDecodeError:
-            raise ValueError(f"--out: {cfile} is not valid JSON; use a new folder") from None
-        if old.get("config_hash") != h:
-            raise ValueError(f"--out: {out} holds a run with another configuration (hash "
-                             f"{old.get('config_hash')} vs {h}); choose a new --out folder, or delete "
-                             "that folder to start over")
-        return
-    tmp = cfile.with_suffix(".tmp")
-    tmp.write_text(json.dumps({"config_hash": h, "config": cfg.identity(), "versions": versions()},
-                              indent=2, sort_keys=True))
-    os.replace(tmp, cfile)
-
-
 def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = 1, scheduler: str | None = None,
                   progress: bool = True) -> dict:
     """Run (or resume) the benchmark into ``out``; return the summary dict.
@@ -139,7 +119,7 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = 1, schedu
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers: must be an integer >= 1, got {workers!r}")
     out = Path(out)
-    _prepare_dir(out, cfg)
+    claim_run_dir(out, "config.json", "config", cfg.hash(), cfg.identity(), "a run with another configuration")
     tpath = out / "trials.jsonl"
     done = {_trial_key(r): r for r in read_trials(tpath)}
     todo = [j for j in cfg.jobs() if j not in done]

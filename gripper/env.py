@@ -67,19 +67,16 @@ def env_arguments(**kwargs) -> dict:
 def check_render_args(render_mode, width, height, camera) -> None:
     if render_mode is not None and render_mode not in RENDER_MODES:
         raise ValueError(f"render_mode: must be one of {RENDER_MODES} or None, got {render_mode!r}")
-    for name, v in (("width", width), ("height", height)):
-        if not isinstance(v, int) or not 16 <= v <= 4096:
-            raise ValueError(f"{name}: must be an integer in [16, 4096] pixels, got {v!r}")
-    from gripper.render import CAMERAS
-    if camera not in CAMERAS:
-        raise ValueError(f"camera: unknown camera {camera!r}; allowed: {', '.join(CAMERAS)}")
+    from gripper.render import check_view
+    check_view(width, height, camera)
 
 
-def observation_table(cfg: EnvConfig) -> str:
-    """The observation table of the docstring, built from :func:`observation_structure`."""
-    rows = [f"| {name} | {start}-{start + size - 1} | {size} | {unit} |"
-            for name, (start, size, unit) in observation_structure(cfg).items()]
-    return "\n".join(["| part | indices | size | unit |", "|---|---|---|---|", *rows])
+def make_spaces(cfg: EnvConfig) -> tuple[dict, spaces.Box, spaces.Box]:
+    """(observation structure, observation space, action space) of one environment."""
+    structure = observation_structure(cfg)
+    n_obs = sum(size for _, size, _ in structure.values())
+    return (structure, spaces.Box(-np.inf, np.inf, (n_obs,), np.float64),
+            spaces.Box(-1.0, 1.0, (cfg.action_size,), np.float32))
 
 
 class SoftGripperGraspEnv(gym.Env):
@@ -231,10 +228,7 @@ class SoftGripperGraspEnv(gym.Env):
             params=self.config.params, render_mode=render_mode, width=width, height=height, camera=camera)
         self.render_mode, self.width, self.height, self.camera = render_mode, width, height, camera
         self.metadata = {**self.metadata, "render_fps": int(round(1.0 / self.config.control_period))}
-        self.observation_structure = observation_structure(self.config)
-        n_obs = sum(size for _, size, _ in self.observation_structure.values())
-        self.observation_space = spaces.Box(-np.inf, np.inf, (n_obs,), np.float64)
-        self.action_space = spaces.Box(-1.0, 1.0, (self.config.action_size,), np.float32)
+        self.observation_structure, self.observation_space, self.action_space = make_spaces(self.config)
         self._scenes = SceneSet(self.config)
         self._stepper = BatchStepper(nthread=0)
         self._ep: EpisodeState | None = None

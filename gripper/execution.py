@@ -30,6 +30,28 @@ def read_jsonl(path: Path) -> list[dict]:
     return [json.loads(line) for line in keep.decode().splitlines() if line.strip()]
 
 
+def claim_run_dir(out: Path, filename: str, key: str, h: str, payload: dict, what: str) -> None:
+    """Create ``out`` and record the run's identity in ``out/filename`` ({key}_hash, {key},
+    versions); an existing record with another hash is refused (ValueError naming ``--out``)."""
+    from gripper.trial import versions
+
+    out.mkdir(parents=True, exist_ok=True)
+    cfile = out / filename
+    if cfile.exists():
+        try:
+            old = json.loads(cfile.read_text())
+        except json.JSONDecodeError:
+            raise ValueError(f"--out: {cfile} is not valid JSON; use a new folder") from None
+        if old.get(f"{key}_hash") != h:
+            raise ValueError(f"--out: {out} holds {what} (hash {old.get(f'{key}_hash')} vs {h}); choose a new "
+                             "--out folder, or delete that folder to start over")
+        return
+    tmp = cfile.with_suffix(".tmp")
+    tmp.write_text(json.dumps({f"{key}_hash": h, key: payload, "versions": versions()},
+                              indent=2, sort_keys=True, default=str))
+    os.replace(tmp, cfile)
+
+
 def executor(workers: int, scheduler: str | None):
     """(client, close, distributed): a Dask client, or an in-process stand-in for one worker."""
     if scheduler is None and workers == 1:

@@ -43,6 +43,16 @@ _FREE = {"top": FreeView((0.0, 0.0, 0.05), 0.5, 90.0, -89.0),
          "track": FreeView((0.0, 0.0, 0.0), 0.32, 135.0, -12.0)}
 
 
+def check_view(width, height, camera, *, prefix: str = "") -> None:
+    """ValueError naming the argument (``prefix`` + name) for an unknown camera or an image size
+    outside [16, 4096] pixels (the offscreen buffer is raised to the size, up to that bound)."""
+    if camera not in CAMERAS:
+        raise ValueError(f"{prefix}camera: unknown camera {camera!r}; allowed: {', '.join(CAMERAS)}")
+    for name, v in (("width", width), ("height", height)):
+        if not isinstance(v, int) or not 16 <= v <= 4096:
+            raise ValueError(f"{prefix}{name}: must be an integer in [16, 4096] pixels, got {v!r}")
+
+
 def choose_gl_backend() -> str | None:
     """Set ``MUJOCO_GL`` unless the user did: ``egl`` if an EGL display starts, else ``osmesa``
     if libOSMesa is installed, else leave it unset (rendering then fails with :func:`gl_error`'s
@@ -124,11 +134,7 @@ class SceneRenderer:
                  view: FreeView | None = None, antialias: bool = False, shadow_size: int = SHADOW_SIZE):
         import mujoco
 
-        if camera not in CAMERAS:
-            raise ValueError(f"camera: unknown camera {camera!r}; allowed: {', '.join(CAMERAS)}")
-        for name, v in (("width", width), ("height", height)):
-            if not isinstance(v, int) or not 16 <= v <= 4096:
-                raise ValueError(f"{name}: must be an integer in [16, 4096] pixels, got {v!r}")
+        check_view(width, height, camera)
         self.model = model
         # the offscreen framebuffer must hold the image: raise it for this model when needed
         model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)

@@ -52,7 +52,6 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-import json
 import math
 import os
 import re
@@ -411,32 +410,15 @@ def run_point(study: Study, index: int, changes: dict) -> dict:
 
 # --- running, tables, plots ------------------------------------------------------------------
 
-def _prepare(out: Path, study: Study) -> None:
-    out.mkdir(parents=True, exist_ok=True)
-    cfile = out / "study.json"
-    h = study.hash()
-    if cfile.exists():
-        old = json.loads(cfile.read_text())
-        if old.get("study_hash") != h:
-            raise ValueError(f"--out: {out} holds another study (hash {old.get('study_hash')} vs {h}); choose a "
-                             "new --out folder, or delete that folder to start over")
-        return
-    from gripper.trial import versions
-    tmp = cfile.with_suffix(".tmp")
-    tmp.write_text(json.dumps({"study_hash": h, "study": study.identity(), "versions": versions()},
-                              indent=2, sort_keys=True, default=str))
-    os.replace(tmp, cfile)
-
-
 def run_study(study: Study, out: str | Path, *, workers: int = 1, scheduler: str | None = None,
               progress: bool = True) -> list[dict]:
     """Run (or resume) the study into ``out``; write the table, plots and recommendations."""
-    from gripper.execution import read_jsonl, run_ordered
+    from gripper.execution import claim_run_dir, read_jsonl, run_ordered
 
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"--workers: must be an integer >= 1, got {workers!r}")
     out = Path(out)
-    _prepare(out, study)
+    claim_run_dir(out, "study.json", "study", study.hash(), study.identity(), "another study")
     path = out / "results.jsonl"
     points = study.design_points()
     done = {r["point"]: r for r in read_jsonl(path)}

@@ -23,17 +23,15 @@ import os
 from typing import Any
 
 import numpy as np
-from gymnasium import spaces
 from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from gripper.env import RENDER_MODES, check_action, check_render_args, env_arguments
+from gripper.env import RENDER_MODES, check_action, check_render_args, env_arguments, make_spaces
 from gripper.env_core import (
     BatchStepper,
     SceneSet,
     evaluate,
-    observation_structure,
     observe,
     start_episode,
     unstable_result,
@@ -64,10 +62,8 @@ class SoftGripperGraspVectorEnv(VectorEnv):
         self.max_episode_steps = max_episode_steps
         self.render_mode, self.width, self.height, self.camera = render_mode, width, height, camera
         self.metadata = {**self.metadata, "render_fps": int(round(1.0 / self.config.control_period))}
-        self.observation_structure = observation_structure(self.config)
-        n_obs = sum(size for _, size, _ in self.observation_structure.values())
-        self.single_observation_space = spaces.Box(-np.inf, np.inf, (n_obs,), np.float64)
-        self.single_action_space = spaces.Box(-1.0, 1.0, (self.config.action_size,), np.float32)
+        self.observation_structure, self.single_observation_space, self.single_action_space = (
+            make_spaces(self.config))
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
         # one scene set per slot: rigid scenes carry per-episode mass and friction

@@ -24,7 +24,7 @@ import mujoco
 import numpy as np
 
 from gripper.atomic import write_atomic
-from gripper.render import CAMERAS, SceneRenderer
+from gripper.render import SceneRenderer, check_view
 
 VIDEO_SUFFIXES = (".mp4", ".gif")
 
@@ -127,11 +127,7 @@ def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, p
         still = Path(still)
         if still.suffix.lower() != ".png" or not (still.parent if str(still.parent) else Path(".")).is_dir():
             raise ValueError(f"--still: must be a .png in an existing folder, got {still}")
-    if camera not in CAMERAS:
-        raise ValueError(f"--camera: unknown camera {camera!r}; allowed: {', '.join(CAMERAS)}")
-    for name, v in (("--width", width), ("--height", height)):
-        if not isinstance(v, int) or not 16 <= v <= 4096:
-            raise ValueError(f"{name}: must be an integer in [16, 4096] pixels, got {v!r}")
+    check_view(width, height, camera, prefix="--")
     if not (isinstance(fps, int | float) and 1 <= fps <= 120):
         raise ValueError(f"--fps: must be in [1, 120], got {fps!r}")
     rec = FrameRecorder(fps=float(fps))
