@@ -1,0 +1,1 @@
+"""Calibration layer: the flexible-multibody reference finger and the hinge-stiffness fit."""

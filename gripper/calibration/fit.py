@@ -1,0 +1,338 @@
+"""Fit the hinge-and-spring finger to a bending record (reference run or bench data).
+
+The hinge model (one finger of :func:`gripper.model.add_finger`, the same parameters) is driven
+by the record's cable tension through a tendon force on the same cable path (guide, one via per
+element, knot at the tip), so the fit compares like with like: per-element angles and the tip
+point at equal tension. Free parameters, in log space and bounded: the stiffness of every hinge
+and, when the record has a transient, the damping of every hinge.
+
+Residuals: element angles in units of ``angle_sigma_deg`` and tip x, z in units of
+``tip_sigma_m``, at every sample (transient records) or at the static points. The samples of the
+``held_out`` load levels are left out of the fit and scored afterwards.
+
+Solver: :func:`mujoco.minimize.least_squares` (Levenberg-Marquardt with box bounds). Each
+residual evaluation is one batched :func:`mujoco.rollout.rollout` over one model per parameter
+point, so the finite-difference Jacobian runs on MuJoCo's thread pool. ``mujoco.sysid`` was not
+used: its parameter and residual plumbing assumes sensor-matched trajectories of one model,
+whereas here the residual is computed from derived quantities (angles summed along the chain).
+
+Example:
+    >>> from gripper.calibration.fit import fit_hinges
+    >>> from gripper.calibration.reference import run_reference
+    >>> fit = fit_hinges(run_reference())          # doctest: +SKIP
+    >>> fit.stiffness                               # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import copy
+import io
+import math
+import os
+import time
+from dataclasses import dataclass, field
+
+import mujoco
+import mujoco.rollout
+import numpy as np
+from mujoco import minimize
+
+from gripper.calibration.reference import BendingRecord
+from gripper.model import FingerNames, _add_defaults, _add_element_meshes, _set_options, add_finger
+from gripper.params import GripperParams
+
+STATIC_HOLD = 0.4  # s, hold per static point; settle time constant 0.02 s (20 x)
+STATIC_SETTLE_TAU = 0.02  # s, c = tau*K gives the static runs critical-free settling
+
+
+@dataclass(frozen=True)
+class FitConfig:
+    """Settings of the hinge fit.
+
+    Attributes:
+        fit_damping: also fit per-hinge damping (needs a record with a transient) [-].
+        held_out: indices of the static points (load levels) left out of the fit [-].
+            Default (2,): the middle of five levels.
+        angle_sigma_deg: scale of the angle residuals [deg] (1°: a protractor on a bench).
+        tip_sigma_m: scale of the tip residuals [m] (1 mm).
+        stiffness_bounds: bounds of each hinge stiffness [N·m/rad].
+        damping_bounds: bounds of each hinge damping [N·m·s/rad].
+        max_iter: iteration cap of the least-squares solver [-].
+    """
+
+    fit_damping: bool = True
+    held_out: tuple[int, ...] = (2,)
+    angle_sigma_deg: float = 1.0
+    tip_sigma_m: float = 1.0e-3
+    stiffness_bounds: tuple[float, float] = (1.0e-4, 10.0)
+    damping_bounds: tuple[float, float] = (1.0e-7, 1.0)
+    max_iter: int = 60
+
+    def validate(self) -> FitConfig:
+        for name in ("angle_sigma_deg", "tip_sigma_m"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v > 0):
+                raise ValueError(f"fit.{name}: must be > 0, got {v!r}")
+        for name in ("stiffness_bounds", "damping_bounds"):
+            lo, hi = getattr(self, name)
+            if not (0 < lo < hi and math.isfinite(hi)):
+                raise ValueError(f"fit.{name}: need 0 < low < high, got {(lo, hi)!r}")
+        return self
+
+
+@dataclass
+class FitResult:
+    """Fitted hinge parameters and how well they reproduce the record.
+
+    Attributes:
+        stiffness: per-hinge stiffness [N·m/rad].
+        damping: per-hinge damping [N·m·s/rad].
+        rest_angle_deg: per-hinge rest angle [deg] (not fitted: 0, moulded straight).
+        fitted: the hinge model's record at the fitted values.
+        metrics: fit quality (see :func:`fit_metrics`).
+        iterations: solver iterations.
+        wall_time_s: fit wall time [s].
+    """
+
+    stiffness: np.ndarray
+    damping: np.ndarray
+    rest_angle_deg: np.ndarray
+    fitted: BendingRecord
+    metrics: dict
+    iterations: int
+    wall_time_s: float
+    config: FitConfig = field(default_factory=FitConfig)
+
+
+def build_hinge_finger(p: GripperParams, timestep: float) -> tuple[mujoco.MjModel, FingerNames]:
+    """One hinge finger in its own frame, its cable pulled by a tendon force (ctrl = tension).
+
+    Gravity is off, as in the reference (see :mod:`gripper.calibration.reference`).
+    """
+    spec = mujoco.MjSpec()
+    _set_options(spec, p.replace(sim=p.sim.replace(timestep=timestep, gravity=0.0)))
+    spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+    spec.modelname = "finger_calibration"
+    defaults = _add_defaults(spec, p)
+    _add_element_meshes(spec, p)
+    names = add_finger(spec, spec.worldbody, p, "f0", [0, 0, 0], [1, 0, 0, 0], defaults)
+    ten = spec.add_tendon(name=names.cable, width=0.5 * p.cable.diameter)
+    ten.wrap_site(f"{names.prefix}_cable_guide")
+    for j in range(1, p.finger.n_segments + 1):
+        ten.wrap_site(f"{names.prefix}_seg{j}_cable")
+    ten.wrap_site(f"{names.prefix}_tip_anchor")
+    act = spec.add_actuator(name="tension", target=names.cable,
+                            trntype=mujoco.mjtTrn.mjTRN_TENDON)
+    act.gear = [-1.0, 0, 0, 0, 0, 0]  # positive control pulls: tension [N]
+    S = mujoco.mjtSensor
+    for h in names.hinges:
+        spec.add_sensor(name=h, type=S.mjSENS_JOINTPOS, objname=h,
+                        objtype=mujoco.mjtObj.mjOBJ_JOINT)
+    spec.add_sensor(name="tip", type=S.mjSENS_FRAMEPOS, objname=names.tip,
+                    objtype=mujoco.mjtObj.mjOBJ_SITE)
+    spec.add_sensor(name="cable_length", type=S.mjSENS_TENDONPOS, objname=names.cable,
+                    objtype=mujoco.mjtObj.mjOBJ_TENDON)
+    return spec.compile(), names
+
+
+class HingeSimulator:
+    """Runs the hinge finger under a tension history for many parameter points at once."""
+
+    def __init__(self, p: GripperParams, timestep: float):
+        self.p = p
+        self.model, self.names = build_hinge_finger(p, timestep)
+        self.n_hinges = p.finger.n_hinges
+        self.jnt = np.array([self.model.joint(h).id for h in self.names.hinges])
+        self.dof = self.model.jnt_dofadr[self.jnt]
+        self.nthread = max(1, min(os.cpu_count() or 1, 8))
+        self.datas = [mujoco.MjData(self.model) for _ in range(self.nthread)]
+        d = self.datas[0]
+        mujoco.mj_forward(self.model, d)
+        self.length0 = float(d.sensordata[-1])
+        self.state0 = np.empty(mujoco.mj_stateSize(self.model, mujoco.mjtState.mjSTATE_FULLPHYSICS))
+        mujoco.mj_getState(self.model, d, self.state0, mujoco.mjtState.mjSTATE_FULLPHYSICS)
+
+    def run(self, stiffness: np.ndarray, damping: np.ndarray, tension: np.ndarray,
+            sample: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """Element angles [deg], tip x, z [m] and r at steps ``sample`` for each column.
+
+        ``stiffness``/``damping``: shape (n_hinges, k). ``tension``: per step [N].
+        """
+        k = stiffness.shape[1]
+        models = []
+        for i in range(k):
+            m = copy.copy(self.model)
+            m.jnt_stiffness[self.jnt] = stiffness[:, i]
+            m.dof_damping[self.dof] = damping[:, i]
+            models.append(m)
+        ctrl = np.asarray(tension, dtype=float).reshape(1, -1, 1)
+        _, sens = mujoco.rollout.rollout(models, self.datas[:max(1, min(k, self.nthread))],
+                                         self.state0, ctrl, skip_checks=False)
+        out = []
+        nh = self.n_hinges
+        for i in range(k):
+            s = sens[i][sample]
+            if not np.isfinite(s).all():
+                raise FloatingPointError("hinge model diverged during the fit")
+            q = s[:, :nh]
+            angles = np.degrees(np.hstack([np.zeros((len(s), 1)), np.cumsum(q, axis=1)]))
+            tip = s[:, [nh, nh + 2]]
+            r = (self.length0 - s[:, nh + 3]) / self.p.finger.length
+            out.append((angles, tip, r))
+        return out
+
+
+def _history(record: BendingRecord, timestep: float, static_only: bool
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Tension per step, the step index of each record sample, and the samples used."""
+    if not static_only:
+        steps = np.rint(record.t / timestep).astype(int)
+        grid = np.arange(steps[-1] + 1) * timestep
+        tension = np.interp(grid, record.t, record.tension_N)
+        return tension, steps, np.arange(len(record.t))
+    # Static points only: a staircase through the recorded tensions, each held STATIC_HOLD.
+    idx = record.static
+    n_hold = int(round(STATIC_HOLD / timestep))
+    levels = record.tension_N[idx]
+    tension = np.repeat(levels, n_hold)
+    steps = np.arange(1, len(idx) + 1) * n_hold - 1
+    full = np.full(len(record.t), -1)
+    full[idx] = steps
+    return tension, full, idx
+
+
+def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
+               config: FitConfig | None = None, *, timestep: float = 5.0e-4) -> FitResult:
+    """Fit per-hinge stiffness (and damping) to ``record`` (see the module docstring).
+
+    Raises:
+        ValueError: a record too small for the number of parameters, or bad settings.
+    """
+    p = (params or GripperParams()).validate()
+    cfg = (config or FitConfig()).validate()
+    nh = p.finger.n_hinges
+    if record.element_angles_deg.shape[1] != p.finger.n_segments:
+        raise ValueError(f"record: has {record.element_angles_deg.shape[1]} elements, the "
+                         f"design has {p.finger.n_segments}")
+    static_only = not cfg.fit_damping
+    sim = HingeSimulator(p, timestep)
+    tension, step_of_sample, used = _history(record, timestep, static_only)
+    held = set(int(i) for i in cfg.held_out if 0 <= i < len(record.static))
+    held_windows = _held_out_mask(record, held)
+    fit_samples = np.array([i for i in used if not held_windows[i]])
+    n_par = nh * (2 if cfg.fit_damping else 1)
+    n_res = len(fit_samples) * (p.finger.n_segments - 1 + 2)
+    if n_res < n_par:
+        raise ValueError(f"data: {len(fit_samples)} usable points give {n_res} residuals, "
+                         f"fewer than the {n_par} parameters to fit")
+
+    target_ang = record.element_angles_deg - record.element_angles_deg[:, :1]
+    target_tip = record.tip_xz_m
+
+    def unpack(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        k = np.exp(x[:nh])
+        c = np.exp(x[nh:]) if cfg.fit_damping else STATIC_SETTLE_TAU * k
+        return k, c
+
+    def residual(x: np.ndarray) -> np.ndarray:
+        x2 = x.reshape(n_par, -1)
+        ks, cs = zip(*(unpack(x2[:, j]) for j in range(x2.shape[1])), strict=True)
+        runs = sim.run(np.array(ks).T, np.array(cs).T, tension, step_of_sample[fit_samples])
+        cols = []
+        for ang, tip, _ in runs:
+            ra = (ang[:, 1:] - target_ang[fit_samples, 1:]) / cfg.angle_sigma_deg
+            rt = (tip - target_tip[fit_samples]) / cfg.tip_sigma_m
+            cols.append(np.hstack([ra, rt]).ravel())
+        res = np.array(cols).T
+        return res if x.ndim == 2 else res[:, 0]
+
+    k0 = _initial_stiffness(record, p)
+    lo_k, hi_k = cfg.stiffness_bounds
+    k0 = np.clip(k0, lo_k * 1.01, hi_k * 0.99)
+    x0 = np.log(k0)
+    lower, upper = np.full(nh, math.log(lo_k)), np.full(nh, math.log(hi_k))
+    if cfg.fit_damping:
+        c0 = np.clip(0.02 * k0, cfg.damping_bounds[0] * 1.01, cfg.damping_bounds[1] * 0.99)
+        x0 = np.concatenate([x0, np.log(c0)])
+        lower = np.concatenate([lower, np.full(nh, math.log(cfg.damping_bounds[0]))])
+        upper = np.concatenate([upper, np.full(nh, math.log(cfg.damping_bounds[1]))])
+    t0 = time.perf_counter()
+    x, trace = minimize.least_squares(x0, residual, bounds=(lower, upper), max_iter=cfg.max_iter,
+                                      verbose=0, output=io.StringIO())
+    wall = time.perf_counter() - t0
+    k, c = unpack(x)
+    fitted = simulate_record(sim, k, c, record, timestep, static_only)
+    metrics = fit_metrics(record, fitted, p, held)
+    return FitResult(stiffness=k, damping=c, rest_angle_deg=np.zeros(nh), fitted=fitted,
+                     metrics=metrics, iterations=len(trace), wall_time_s=wall, config=cfg)
+
+
+def _held_out_mask(record: BendingRecord, held: set[int]) -> np.ndarray:
+    """Samples inside the hold windows of the held-out static points."""
+    mask = np.zeros(len(record.t), dtype=bool)
+    bounds = np.concatenate([[-1], record.static])
+    for i in held:
+        mask[bounds[i] + 1:bounds[i + 1] + 1] = True
+    return mask
+
+
+def _initial_stiffness(record: BendingRecord, p: GripperParams) -> np.ndarray:
+    """Statics at the highest static point: K = T·arm / hinge angle (arm: hole above hinge)."""
+    i = record.static[-1] if len(record.static) else len(record.t) - 1
+    hinge = np.diff(record.element_angles_deg[i])
+    arm = p.finger.hole_height - p.finger.hinge_z
+    with np.errstate(divide="ignore"):
+        k = record.tension_N[i] * arm / np.radians(np.maximum(hinge, 0.5))
+    return np.where(np.isfinite(k), k, 0.1)
+
+
+def simulate_record(sim: HingeSimulator, k: np.ndarray, c: np.ndarray, record: BendingRecord,
+                    timestep: float, static_only: bool) -> BendingRecord:
+    """The hinge model's record under ``record``'s tension history."""
+    tension, step_of_sample, used = _history(record, timestep, static_only)
+    t0 = time.perf_counter()
+    (ang, tip, r), = sim.run(k[:, None], c[:, None], tension, step_of_sample[used])
+    wall = time.perf_counter() - t0
+    n = len(record.t)
+    full_ang = np.full((n, ang.shape[1]), np.nan)
+    full_tip = np.full((n, 2), np.nan)
+    full_r = np.full(n, np.nan)
+    full_ang[used], full_tip[used], full_r[used] = ang, tip, r
+    return BendingRecord(t=record.t.copy(), tension_N=record.tension_N.copy(), r=full_r,
+                         element_angles_deg=full_ang, tip_xz_m=full_tip,
+                         static=record.static.copy(), wall_time_s=wall)
+
+
+def fit_metrics(record: BendingRecord, fitted: BendingRecord, p: GripperParams,
+                held: set[int]) -> dict:
+    """RMS errors of the fitted model against the record.
+
+    Keys: ``tip_rms_m`` and ``tip_rms_frac`` (of the finger length) and ``angle_rms_deg``
+    (per element B2..Bn) over the fitted samples; ``held_out`` with, per held-out static
+    point, the tip error as a fraction of the finger length and the relative error of the
+    bending angle.
+    """
+    mask = _held_out_mask(record, held) | ~np.isfinite(fitted.tip_xz_m[:, 0])
+    fit_idx = np.flatnonzero(~mask)
+    ref_ang = record.element_angles_deg - record.element_angles_deg[:, :1]
+    da = fitted.element_angles_deg[fit_idx, 1:] - ref_ang[fit_idx, 1:]
+    dt = np.linalg.norm(fitted.tip_xz_m[fit_idx] - record.tip_xz_m[fit_idx], axis=1)
+    L = p.finger.length
+    out = {
+        "samples": int(len(fit_idx)),
+        "tip_rms_m": float(np.sqrt(np.mean(dt ** 2))),
+        "tip_rms_frac": float(np.sqrt(np.mean(dt ** 2)) / L),
+        "angle_rms_deg": np.sqrt(np.mean(da ** 2, axis=0)).tolist(),
+        "held_out": [],
+    }
+    for i in sorted(held):
+        j = int(record.static[i])
+        tip_err = float(np.linalg.norm(fitted.tip_xz_m[j] - record.tip_xz_m[j]))
+        bend_ref = float(ref_ang[j, -1])
+        bend_fit = float(fitted.element_angles_deg[j, -1])
+        out["held_out"].append({
+            "level": i, "tension_N": float(record.tension_N[j]),
+            "tip_error_frac": tip_err / L,
+            "bending_error_frac": abs(bend_fit - bend_ref) / max(abs(bend_ref), 1e-9),
+        })
+    return out

@@ -1,0 +1,235 @@
+"""Tetrahedral mesh of the silicone finger body, built from :class:`FingerGeometry`.
+
+The body is meshed the way it is moulded: a bar of ``n_segments`` elements, each cut from its
+neighbours by a triangular notch whose apex sits on the bridge top, with a cable channel through
+every element. The mesh is *mapped*: each element is a structured block of hexahedral cells whose
+columns lean with the cut faces above the bridge, so the cut faces are exact planes of the mesh;
+below the bridge top the elements share their boundary nodes, so the bridges are continuous.
+Every hexahedron is split into six tetrahedra (Kuhn split, the same diagonal everywhere, so
+neighbouring cells conform).
+
+Choices (written down because no paper gives them):
+
+* **Cable channel**: the 6 mm round hole (paper 000 §II) is carved as a square channel of the
+  same cross-section area (side ``d·sqrt(pi)/2`` = 5.3 mm), aligned with the grid, so the mesh
+  needs no curved faces. The channel runs through each element along x.
+* **Grading**: nodes along each element are spaced by a cosine law, fine at both ends (2.3 mm at
+  the default resolution) where the bridges bend, coarse in the stiff middle of the element.
+* **Resolution**: ``MeshResolution.scale`` multiplies every cell count; 1 is the default used
+  for calibration, 2 halves every cell edge (the convergence check).
+
+Example:
+    >>> from gripper.params import FingerGeometry
+    >>> mesh = finger_mesh(FingerGeometry())
+    >>> mesh.points.shape[1], mesh.tets.shape[1]
+    (3, 4)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gripper.geometry import element_kind
+from gripper.params import FingerGeometry
+
+
+@dataclass(frozen=True)
+class MeshResolution:
+    """Cell counts of the mapped mesh at ``scale`` = 1 (each count is multiplied by ``scale``).
+
+    Attributes:
+        scale: refinement factor applied to every count [-]; 1 default, 2 for convergence.
+        along: cells along one element (x), cosine-graded [-]. Default 4: 2.3 mm at the ends
+            (6 runs 2x slower; the difference is in the convergence table of the README).
+        bridge: cells through the bridge thickness [-]. Default 2 (1.5 mm): bending of the
+            bridge needs at least two linear tetrahedra through its thickness.
+        below_hole: cells from the bridge top to the channel floor [-]. Default 2.
+        channel: cells across the channel's height and width [-]. Default 1.
+        above_hole: cells from the channel roof to the grasping face [-]. Default 1.
+        side: cells across each side wall of the channel (y) [-]. Default 1.
+        uniform: no channel and no cuts (a plain bar of the same size): the beam check.
+    """
+
+    scale: int = 1
+    along: int = 4
+    bridge: int = 2
+    below_hole: int = 2
+    channel: int = 1
+    above_hole: int = 1
+    side: int = 1
+    uniform: bool = False
+
+    def validate(self) -> MeshResolution:
+        for name in ("scale", "along", "bridge", "below_hole", "channel", "above_hole", "side"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int) or not 1 <= v <= 32:
+                raise ValueError(f"mesh.{name}: must be an integer in [1, 32], got {v!r}")
+        return self
+
+
+@dataclass(frozen=True)
+class FingerMesh:
+    """A tetrahedral mesh in the finger frame [m].
+
+    Attributes:
+        points: node coordinates, shape (n, 3) [m].
+        tets: node indices of each tetrahedron, positively oriented, shape (m, 4).
+        element_of_node: index of the element (0 = B1) each node belongs to; nodes shared by two
+            elements (the bridge under a cut) belong to the proximal one, shape (n,).
+        nodes_of_element: node indices of each element, shared bridge nodes in both.
+        channel_nodes: per element, the nodes on the cable channel's wall.
+        anchor_nodes: nodes on the channel's rim at the tip's distal face (where the cable is
+            knotted).
+    """
+
+    points: np.ndarray
+    tets: np.ndarray
+    nodes_of_element: tuple[np.ndarray, ...]
+    channel_nodes: tuple[np.ndarray, ...]
+    anchor_nodes: np.ndarray
+
+    @property
+    def n_nodes(self) -> int:
+        return len(self.points)
+
+    def volume(self) -> float:
+        """Total volume of the tetrahedra [m³]."""
+        return float(_signed_volumes(self.points, self.tets).sum())
+
+
+def channel_side(g: FingerGeometry) -> float:
+    """Side of the square channel with the round hole's area [m]."""
+    return 0.5 * g.hole_diameter * math.sqrt(math.pi)
+
+
+def _levels(breaks: list[float], counts: list[int]) -> np.ndarray:
+    out = [breaks[0]]
+    for a, b, n in zip(breaks[:-1], breaks[1:], counts, strict=True):
+        out += list(np.linspace(a, b, n + 1)[1:])
+    return np.asarray(out)
+
+
+def _signed_volumes(points: np.ndarray, tets: np.ndarray) -> np.ndarray:
+    a, b, c, d = (points[tets[:, i]] for i in range(4))
+    return np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a) / 6.0
+
+
+# Kuhn split of the unit cube into six tetrahedra along the diagonal (0,0,0)-(1,1,1).
+_KUHN = [
+    [(0, 0, 0), (1, 0, 0), (1, 1, 0), (1, 1, 1)],
+    [(0, 0, 0), (1, 0, 0), (1, 0, 1), (1, 1, 1)],
+    [(0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 1, 1)],
+    [(0, 0, 0), (0, 1, 0), (0, 1, 1), (1, 1, 1)],
+    [(0, 0, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1)],
+    [(0, 0, 0), (0, 0, 1), (0, 1, 1), (1, 1, 1)],
+]
+
+
+def finger_mesh(g: FingerGeometry, res: MeshResolution | None = None) -> FingerMesh:
+    """Mesh the finger body of geometry ``g`` (see the module docstring).
+
+    Raises:
+        ValueError: invalid geometry or resolution.
+    """
+    g.validate()
+    res = (res or MeshResolution()).validate()
+    s = res.scale
+    a = channel_side(g)
+    zc0, zc1 = g.hole_height - 0.5 * a, g.hole_height + 0.5 * a
+    if zc0 <= g.bridge_thickness or zc1 >= g.height:
+        raise ValueError("finger.hole_height: the cable channel must clear the bridge and the "
+                         "grasping face")
+    z_lv = _levels([0.0, g.bridge_thickness, zc0, zc1, g.height],
+                   [res.bridge * s, res.below_hole * s, res.channel * s, res.above_hole * s])
+    y_lv = _levels([-0.5 * g.width, -0.5 * a, 0.5 * a, 0.5 * g.width],
+                   [res.side * s, res.channel * s, res.side * s])
+    nx = res.along * s
+    u = 0.5 * (1.0 - np.cos(np.pi * np.arange(nx + 1) / nx))  # cosine grading in [0, 1]
+    tan_half = math.tan(0.5 * math.radians(g.cut_angle_deg))
+    iz_bridge = res.bridge * s  # level index of the bridge top
+
+    def in_channel(jy: int, kz: int) -> bool:  # cell (jy, kz) inside the channel?
+        yc = 0.5 * (y_lv[jy] + y_lv[jy + 1])
+        zc = 0.5 * (z_lv[kz] + z_lv[kz + 1])
+        return abs(yc) < 0.5 * a and zc0 < zc < zc1
+
+    key_to_id: dict[tuple, int] = {}
+    points: list[tuple[float, float, float]] = []
+    tets: list[list[int]] = []
+    nodes_of_element: list[set[int]] = []
+    channel_nodes: list[set[int]] = []
+    for e in range(g.n_segments):
+        kind = element_kind(e, g.n_segments)
+        cut_prox = kind in ("middle", "tip") and not res.uniform
+        cut_dist = kind in ("middle", "base") and not res.uniform
+        x0 = e * g.pitch
+        ids = np.empty((nx + 1, len(y_lv), len(z_lv)), dtype=int)
+        for k, z in enumerate(z_lv):
+            d = max(0.0, z - g.bridge_thickness) * tan_half
+            lo = x0 + (d if cut_prox else 0.0)
+            hi = x0 + g.pitch - (d if cut_dist else 0.0)
+            for i in range(nx + 1):
+                x = lo + (hi - lo) * u[i]
+                for j, y in enumerate(y_lv):
+                    # Nodes are shared between elements only on the bridge (k <= iz_bridge) at
+                    # the common boundary; elsewhere the cut separates them.
+                    shared = (i == 0 and e > 0) and (k <= iz_bridge or res.uniform)
+                    key = (e - 1, nx, j, k) if shared else (e, i, j, k)
+                    if key not in key_to_id:
+                        key_to_id[key] = len(points)
+                        points.append((x, y, z))
+                    ids[i, j, k] = key_to_id[key]
+        elem_nodes: set[int] = set()
+        chan: set[int] = set()
+        for i in range(nx):
+            for j in range(len(y_lv) - 1):
+                for k in range(len(z_lv) - 1):
+                    if not res.uniform and in_channel(j, k):
+                        chan.update(ids[i:i + 2, j:j + 2, k:k + 2].ravel().tolist())
+                        continue
+                    for tet in _KUHN:
+                        tets.append([int(ids[i + di, j + dj, k + dk]) for di, dj, dk in tet])
+                    elem_nodes.update(ids[i:i + 2, j:j + 2, k:k + 2].ravel().tolist())
+        nodes_of_element.append(elem_nodes)
+        channel_nodes.append(chan & elem_nodes)
+
+    pts = np.asarray(points)
+    tet_arr = np.asarray(tets, dtype=int)
+    # Drop nodes no tetrahedron uses (the channel's inside has none: its wall nodes are used).
+    used = np.unique(tet_arr)
+    remap = -np.ones(len(pts), dtype=int)
+    remap[used] = np.arange(len(used))
+    pts = pts[used]
+    tet_arr = remap[tet_arr]
+    vol = _signed_volumes(pts, tet_arr)
+    neg = vol < 0
+    tet_arr[neg] = tet_arr[neg][:, [0, 2, 1, 3]]
+    if np.any(np.abs(vol) < 1e-15):
+        raise ValueError("mesh: degenerate tetrahedra; the resolution is too fine for this "
+                         "geometry")
+
+    def mapped(nodes: set[int]) -> np.ndarray:
+        return np.array(sorted(int(remap[n]) for n in nodes if remap[n] >= 0), dtype=int)
+
+    chan_idx = tuple(mapped(c) for c in channel_nodes)
+    if res.uniform:
+        # The beam check has no channel: the cable forces go to the nodes nearest the hole axis.
+        chan_idx = tuple(_nearest_line_nodes(pts, mapped(n), g.hole_height)
+                         for n in nodes_of_element)
+    tip_face = np.isclose(pts[:, 0], g.length)
+    anchor = np.flatnonzero(tip_face & np.isin(np.arange(len(pts)), chan_idx[-1]))
+    if res.uniform:
+        anchor = np.flatnonzero(tip_face & (np.abs(pts[:, 2] - g.hole_height)
+                                            <= np.abs(pts[tip_face, 2] - g.hole_height).min()
+                                            + 1e-12))
+    return FingerMesh(points=pts, tets=tet_arr,
+                      nodes_of_element=tuple(mapped(n) for n in nodes_of_element),
+                      channel_nodes=chan_idx, anchor_nodes=anchor)
+
+
+def _nearest_line_nodes(pts: np.ndarray, nodes: np.ndarray, z: float) -> np.ndarray:
+    dz = np.abs(pts[nodes, 2] - z)
+    return nodes[dz <= dz.min() + 1e-12]

@@ -1,0 +1,330 @@
+"""Flexible-multibody reference: the silicone finger as a MuJoCo 3D flex, bent by its cable.
+
+The body (cuts, bridges, cable channel) is meshed by :func:`gripper.calibration.mesh.finger_mesh`
+from the same :class:`~gripper.params.FingerGeometry` as the hinge model, and simulated as a
+``flexcomp`` of linear tetrahedra with Saint Venant-Kirchhoff elasticity (Young's modulus,
+Poisson's ratio and density from :class:`~gripper.params.Material`: paper 000 Tables 1-2). The
+base element B1 is clamped over the half of its length that sits in the palm mount.
+
+**Cable.** As in paper 000 (cable forces at the hole points A_i), the cable acts through
+equivalent forces. Its path runs from the fixed guide behind the palm through one via point per
+element, the centroid of that element's channel wall, to the knot at the tip's distal face. At
+every step the via points are taken from the deformed mesh, each straight span's unit vector is
+recomputed, and the net cable force at each via point, ``T (u_out - u_in)``, is spread equally
+over the channel-wall nodes of its element (the knot's force over the channel rim at the tip).
+The cable shortening ``r`` is the change of the path length over the straight finger's length.
+
+**Load.** Tension is the input: a staircase of ``n_levels`` equal steps up to ``tension_max``,
+each step a 50 ms half-cosine ramp then a hold, 2 s in all at a 5e-4 s step (paper 000 §IV).
+The end of each hold is a quasi-static point; the ramps are the transient that carries damping.
+
+**Damping.** Rayleigh stiffness-proportional damping ``beta = 2 zeta / omega_1``: paper 000
+Table 2 gives a modal damping of 0.5 (read as the damping ratio zeta of the retained modes); it
+is applied at the finger's first bending mode ``f1`` (:attr:`ReferenceConfig.first_mode_hz`).
+
+**Gravity** is off: the hinge model's bending test lies in a horizontal plane, where gravity
+loads only the hinge bearings, so the calibration compares the cable-spring balance alone.
+
+**Known limitation (measured, see ``scripts/bench_calibration.py``).** Linear tetrahedra are
+too stiff in bending (shear locking) and more so when nearly incompressible (volumetric locking,
+Poisson 0.48); the uniform-beam check reports how far from the closed form the default mesh is.
+
+Example:
+    >>> from gripper.calibration.reference import ReferenceConfig, run_reference
+    >>> res = run_reference(config=ReferenceConfig(duration=0.1))   # doctest: +SKIP
+    >>> res.element_angles_deg.shape[1]                              # doctest: +SKIP
+    6
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, field
+
+import mujoco
+import numpy as np
+
+from gripper.calibration.mesh import FingerMesh, MeshResolution, finger_mesh
+from gripper.model import GUIDE_DEPTH
+from gripper.params import GripperParams
+from gripper.stability import SimulationUnstable, check_stable
+
+PAPER_STEP = 5.0e-4  # s, paper 000 §IV
+PAPER_DURATION = 2.0  # s, paper 000 §IV
+PAPER_MODAL_DAMPING = 0.5  # -, paper 000 Table 2 ("modal damping 0.5")
+RAMP_TIME = 0.05  # s, each tension step's half-cosine ramp: 10 x shorter than a hold
+
+
+@dataclass(frozen=True)
+class ReferenceConfig:
+    """Settings of the reference bending test.
+
+    Attributes:
+        mesh: mesh resolution (see :class:`MeshResolution`).
+        tension_max: highest cable tension [N]. Default 0.25 N: keeps the default finger's
+            cuts open (largest hinge angle about 14°, a third of the 41° closing angle), since
+            the reference does not model contact between cut faces.
+        n_levels: number of tension steps (quasi-static points) [-].
+        duration: length of the whole test [s] (paper 000 §IV: 2 s).
+        timestep: [s] (paper 000 §IV: 5e-4 s).
+        damping_ratio: modal damping ratio zeta [-] (paper 000 Table 2: 0.5).
+        first_mode_hz: first bending frequency used to turn zeta into Rayleigh damping [Hz].
+            Default 9 Hz: the default finger's free vibration in this reference (measured by
+            ``scripts/bench_calibration.py --first-mode``).
+        clamp_length: length of B1 held by the palm mount, from its proximal face [m].
+            Default half a pitch (8 mm): a mount that grips half of the base element.
+        solver_iterations: iteration cap of MuJoCo's effective-metric solve [-]. The default
+            3000 converges for the default mesh; MuJoCo warns (and the run fails) otherwise.
+        solver_tolerance: relative tolerance of that solve [-]. 1e-6: tighter changed the
+            default test's tip angle by less than 0.1 % and ran 1.5x slower.
+        sample_every: record every k-th step [-].
+    """
+
+    mesh: MeshResolution = field(default_factory=MeshResolution)
+    tension_max: float = 0.25
+    n_levels: int = 5
+    duration: float = PAPER_DURATION
+    timestep: float = PAPER_STEP
+    damping_ratio: float = PAPER_MODAL_DAMPING
+    first_mode_hz: float = 9.0
+    clamp_length: float = 0.008
+    solver_iterations: int = 3000
+    solver_tolerance: float = 1e-6
+    sample_every: int = 20
+
+    def validate(self) -> ReferenceConfig:
+        self.mesh.validate()
+        for name in ("tension_max", "duration", "timestep", "first_mode_hz", "clamp_length",
+                     "solver_tolerance"):
+            v = getattr(self, name)
+            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+                raise ValueError(f"reference.{name}: must be a number > 0, got {v!r}")
+        if not 0 <= self.damping_ratio < 10:
+            raise ValueError(f"reference.damping_ratio: must be in [0, 10), "
+                             f"got {self.damping_ratio!r}")
+        if self.timestep > 0.01:
+            raise ValueError(f"reference.timestep: must be <= 0.01 s, got {self.timestep!r}")
+        for name, lo, hi in (("n_levels", 1, 100), ("solver_iterations", 10, 100000),
+                             ("sample_every", 1, 10000)):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
+                raise ValueError(f"reference.{name}: must be an integer in [{lo}, {hi}], "
+                                 f"got {v!r}")
+        if self.duration / self.n_levels <= 2 * RAMP_TIME:
+            raise ValueError(f"reference.n_levels: each level needs > {2 * RAMP_TIME} s; "
+                             f"got {self.n_levels} levels in {self.duration} s")
+        return self
+
+    @property
+    def rayleigh_damping(self) -> float:
+        """Rayleigh stiffness coefficient beta = 2 zeta / (2 pi f1) [s]."""
+        return 2.0 * self.damping_ratio / (2.0 * math.pi * self.first_mode_hz)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def tension_schedule(t: np.ndarray, tension_max: float, n_levels: int,
+                     duration: float) -> np.ndarray:
+    """Staircase tension [N] at times ``t`` [s]: ``n_levels`` half-cosine steps, then holds."""
+    hold = duration / n_levels
+    k = np.clip(np.floor(t / hold), 0, n_levels - 1)
+    frac = np.clip((t - k * hold) / RAMP_TIME, 0.0, 1.0)
+    step = 0.5 * (1.0 - np.cos(np.pi * frac))
+    return tension_max / n_levels * (k + step)
+
+
+def plateau_indices(t: np.ndarray, n_levels: int, duration: float) -> np.ndarray:
+    """Indices of the samples at the end of each hold (the quasi-static points)."""
+    hold = duration / n_levels
+    ends = hold * np.arange(1, n_levels + 1)
+    return np.array([int(np.argmin(np.abs(t - e))) for e in ends])
+
+
+@dataclass
+class BendingRecord:
+    """A bending test in the finger frame, from the reference, a hinge model or a bench.
+
+    Attributes:
+        t: time [s], shape (n,).
+        tension_N: cable tension [N], shape (n,).
+        r: cable shortening rate [-], shape (n,).
+        element_angles_deg: rotation of each element B1..Bn about the hinge axis from its
+            straight pose, positive curling towards the grasping face [deg], shape (n, n_seg).
+        tip_xz_m: tip point (neutral axis at the distal face) x and z [m], shape (n, 2).
+        static: indices of the quasi-static samples, shape (k,).
+        wall_time_s: wall-clock time of the simulation [s].
+        warnings: MuJoCo warnings counted over the run.
+    """
+
+    t: np.ndarray
+    tension_N: np.ndarray
+    r: np.ndarray
+    element_angles_deg: np.ndarray
+    tip_xz_m: np.ndarray
+    static: np.ndarray
+    wall_time_s: float = 0.0
+    warnings: int = 0
+
+    @property
+    def bending_angle_deg(self) -> np.ndarray:
+        """Tip element's angle relative to the base element [deg]."""
+        return self.element_angles_deg[:, -1] - self.element_angles_deg[:, 0]
+
+    def to_json_dict(self) -> dict:
+        return {k: (v.tolist() if isinstance(v, np.ndarray) else v)
+                for k, v in self.__dict__.items()}
+
+
+def _flexcomp_xml(p: GripperParams, mesh: FingerMesh, pinned: np.ndarray,
+                  cfg: ReferenceConfig) -> str:
+    mass = p.material.density * mesh.volume()
+    pts = " ".join(f"{v:.9g}" for v in mesh.points.ravel())
+    elem = " ".join(str(i) for i in mesh.tets.ravel())
+    pin = " ".join(str(i) for i in pinned)
+    # Contact is off: the reference measures bending with open cuts (see tension_max).
+    return f"""<mujoco model="finger_reference">
+  <option timestep="{cfg.timestep}" integrator="discrete" solver="Newton"
+          iterations="{cfg.solver_iterations}" tolerance="{cfg.solver_tolerance:g}" gravity="0 0 0"/>
+  <worldbody>
+    <body name="clamp">
+      <flexcomp name="body" type="direct" dim="3" point="{pts}" element="{elem}"
+                mass="{mass:.9g}" radius="0.0002" rgba="0.93 0.93 0.88 1">
+        <contact contype="0" conaffinity="0" selfcollide="none"/>
+        <elasticity young="{p.material.youngs_modulus:.9g}" poisson="{p.material.poisson_ratio}"
+                    damping="{cfg.rayleigh_damping:.9g}"/>
+        <pin id="{pin}"/>
+      </flexcomp>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+
+def _kabsch_angles(ref: np.ndarray, cur: np.ndarray, groups: list[np.ndarray]
+                   ) -> tuple[np.ndarray, list[tuple[np.ndarray, np.ndarray, np.ndarray]]]:
+    """Best-fit rotation of each node group; angle about -y (curl to +z) [rad] and transforms."""
+    angles = np.empty(len(groups))
+    fits = []
+    for k, idx in enumerate(groups):
+        a, b = ref[idx], cur[idx]
+        ca, cb = a.mean(0), b.mean(0)
+        h = (a - ca).T @ (b - cb)
+        u, _, vt = np.linalg.svd(h)
+        dfix = np.diag([1.0, 1.0, np.sign(np.linalg.det(vt.T @ u.T))])
+        rot = vt.T @ dfix @ u.T
+        angles[k] = math.atan2(rot[2, 0], rot[0, 0])
+        fits.append((rot, ca, cb))
+    return angles, fits
+
+
+class ReferenceFinger:
+    """The compiled reference model and the bookkeeping of its nodes and cable.
+
+    Example:
+        >>> ref = ReferenceFinger(GripperParams(), ReferenceConfig())   # doctest: +SKIP
+        >>> ref.model.nv                                                # doctest: +SKIP
+    """
+
+    def __init__(self, params: GripperParams | None = None,
+                 config: ReferenceConfig | None = None):
+        self.p = (params or GripperParams()).validate()
+        self.cfg = (config or ReferenceConfig()).validate()
+        g = self.p.finger
+        self.mesh = finger_mesh(g, self.cfg.mesh)
+        pts = self.mesh.points
+        self.pinned = np.flatnonzero(pts[:, 0] <= self.cfg.clamp_length + 1e-9)
+        self.model = mujoco.MjModel.from_xml_string(
+            _flexcomp_xml(self.p, self.mesh, self.pinned, self.cfg))
+        self.data = mujoco.MjData(self.model)
+        mujoco.mj_forward(self.model, self.data)
+        free = np.ones(len(pts), dtype=bool)
+        free[self.pinned] = False
+        self.body_of_node = np.full(len(pts), -1)
+        for i in np.flatnonzero(free):
+            self.body_of_node[i] = self.model.body(f"body_{i}").id
+        self.free = free
+        # Cable path: guide (fixed), one via per element, knot at the tip.
+        self.groups = [c for c in self.mesh.channel_nodes] + [self.mesh.anchor_nodes]
+        self.guide = np.array([-GUIDE_DEPTH, 0.0, g.hole_height])
+        path0 = np.vstack([self.guide] + [pts[grp].mean(0) for grp in self.groups])
+        self.length0 = g.length  # r is referred to the finger length, as in the hinge test
+        self.path_length0 = float(np.linalg.norm(np.diff(path0, axis=0), axis=1).sum())
+        self.tip_point = np.array([g.length, 0.0, g.hinge_z])
+
+    def node_positions(self) -> np.ndarray:
+        pos = self.mesh.points.copy()
+        pos[self.free] = self.data.xpos[self.body_of_node[self.free]]
+        return pos
+
+    def apply_cable(self, tension: float, pos: np.ndarray) -> float:
+        """Set the cable's equivalent nodal forces for ``tension`` [N]; return the path length."""
+        path = np.vstack([self.guide] + [pos[grp].mean(0) for grp in self.groups])
+        seg = np.diff(path, axis=0)
+        lengths = np.linalg.norm(seg, axis=1)
+        u = seg / lengths[:, None]
+        xf = self.data.xfrc_applied
+        xf[:, :3] = 0.0
+        for k, grp in enumerate(self.groups):
+            u_out = u[k + 1] if k + 1 < len(u) else np.zeros(3)
+            force = tension * (u_out - u[k])
+            bodies = self.body_of_node[grp]
+            bodies = bodies[bodies >= 0]
+            if len(bodies):
+                xf[bodies, :3] += force / len(grp)
+        return float(lengths.sum())
+
+    def measure(self, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Element angles [rad] (B1..Bn) and the tip point's x, z [m]."""
+        angles, fits = _kabsch_angles(self.mesh.points, pos, list(self.mesh.nodes_of_element))
+        rot, ca, cb = fits[-1]
+        tip = rot @ (self.tip_point - ca) + cb
+        return angles, tip[[0, 2]]
+
+
+def run_reference(params: GripperParams | None = None,
+                  config: ReferenceConfig | None = None) -> BendingRecord:
+    """Run the reference bending test (see the module docstring).
+
+    Raises:
+        ValueError: invalid parameters or config.
+        SimulationUnstable: MuJoCo warned (e.g. the effective-metric solve did not converge)
+            or the state became non-finite.
+    """
+    ref = ReferenceFinger(params, config)
+    cfg = ref.cfg
+    m, d = ref.model, ref.data
+    n_steps = int(round(cfg.duration / cfg.timestep))
+    times = np.arange(n_steps + 1) * cfg.timestep
+    tensions = tension_schedule(times, cfg.tension_max, cfg.n_levels, cfg.duration)
+    rows = []
+    t0 = time.perf_counter()
+    for step in range(n_steps + 1):
+        pos = ref.node_positions()
+        length = ref.apply_cable(float(tensions[step]), pos)
+        if step % cfg.sample_every == 0 or step == n_steps:
+            angles, tip = ref.measure(pos)
+            rows.append((d.time, tensions[step], (ref.path_length0 - length) / ref.length0,
+                         angles, tip))
+        if step == n_steps:
+            break
+        mujoco.mj_step(m, d)
+        if step % 100 == 0:
+            check_stable(m, d, "reference bending test")
+    check_stable(m, d, "reference bending test")
+    wall = time.perf_counter() - t0
+    t = np.array([r[0] for r in rows])
+    return BendingRecord(
+        t=t,
+        tension_N=np.array([r[1] for r in rows]),
+        r=np.array([r[2] for r in rows]),
+        element_angles_deg=np.degrees(np.array([r[3] for r in rows])),
+        tip_xz_m=np.array([r[4] for r in rows]),
+        static=plateau_indices(t, cfg.n_levels, cfg.duration),
+        wall_time_s=wall,
+        warnings=int(sum(w.number for w in d.warning)),
+    )
+
+
+__all__ = ["BendingRecord", "ReferenceConfig", "ReferenceFinger", "SimulationUnstable",
+           "plateau_indices", "run_reference", "tension_schedule"]
