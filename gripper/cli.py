@@ -22,7 +22,12 @@ EXIT_UNSTABLE = 3
 
 
 def _params(args) -> GripperParams:
-    return GripperParams.load(args.params) if args.params else GripperParams().validate()
+    p = GripperParams.load(args.params) if args.params else GripperParams().validate()
+    if getattr(args, "calibration", None):
+        from gripper.calibration.calfile import apply_calibration
+
+        p = apply_calibration(p, args.calibration, force=args.force_calibration)
+    return p
 
 
 def _cmd_bend(args) -> int:
@@ -147,6 +152,39 @@ def _cmd_video(args) -> int:
     return EXIT_UNSTABLE if res["status"] == "error" else 0
 
 
+def _cmd_calibrate(args) -> int:
+    from gripper.calibration.calfile import PAPER_STIFFNESS_NM_PER_DEG
+    from gripper.calibration.fit import FitConfig
+    from gripper.calibration.mesh import MeshResolution
+    from gripper.calibration.pipeline import calibrate
+    from gripper.calibration.reference import ReferenceConfig
+    from gripper.calibration.report import error_table, format_table
+
+    p = GripperParams.load(args.params) if args.params else GripperParams().validate()
+    ref = ReferenceConfig(mesh=MeshResolution(scale=args.mesh_scale),
+                          tension_max=args.tension_max, n_levels=args.levels)
+    held = tuple(int(v) for v in args.held_out.split(",") if v.strip()) if args.held_out else ()
+    fit = FitConfig(fit_damping=args.data is None, held_out=held)
+    cal, result, record = calibrate(args.out, p, data=args.data, reference=ref, fit=fit,
+                                    on_progress=lambda m: print(m, file=sys.stderr))
+    print(format_table(error_table(record, result)))
+    m = cal.metrics
+    if m.get("tip_rms_frac") is not None:
+        print(f"tip RMS error {m['tip_rms_m'] * 1e3:.2f} mm = {100 * m['tip_rms_frac']:.2f} % "
+              f"of the finger length")
+    for h in m["held_out"]:
+        parts = [f"held-out level {h['level']} ({h['tension_N']:.3g} N):"]
+        if h["tip_error_frac"] is not None:
+            parts.append(f"tip error {100 * h['tip_error_frac']:.2f} % of length")
+        if h["bending_error_frac"] is not None:
+            parts.append(f"bending angle error {100 * h['bending_error_frac']:.2f} %")
+        print(" ".join(parts))
+    print(f"paper 000 Table 2: {PAPER_STIFFNESS_NM_PER_DEG:g} N·m/deg per hinge")
+    print(f"fit {m['fit_wall_time_s']:.1f} s wall; wrote {args.out}/calibration.json, "
+          f"report.png, errors.csv")
+    return 0
+
+
 def _cmd_study(args) -> int:
     from gripper.study import load_study, run_study
 
@@ -192,6 +230,11 @@ def build_parser() -> argparse.ArgumentParser:
     def with_params(p):
         p.add_argument("--params", metavar="FILE",
                        help="gripper parameter file (.json or .toml); defaults if omitted")
+        p.add_argument("--calibration", metavar="FILE",
+                       help="calibration file from 'gripper calibrate': its fitted hinge springs "
+                            "replace those of the parameters")
+        p.add_argument("--force-calibration", action="store_true",
+                       help="apply --calibration even if it was made for another design")
         return p
 
     b = with_params(sub.add_parser(
@@ -275,6 +318,25 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://127.0.0.1:8786")
     st.add_argument("--no-progress", action="store_true")
     st.set_defaults(func=_cmd_study)
+
+    cal = sub.add_parser(
+        "calibrate", help="fit the hinge springs to the flex reference finger or to bench data",
+        description="Run the flexible-multibody reference bending test (a tetrahedral flex of "
+                    "the finger, 2 s at 5e-4 s) and fit every hinge's stiffness and damping to "
+                    "it, or fit the stiffness to bench data (--data CSV, columns in "
+                    "gripper/calibration/measured.py). Writes calibration.json, report.png and "
+                    "errors.csv into --out.")
+    cal.add_argument("--params", metavar="FILE", help="gripper parameter file; defaults if omitted")
+    cal.add_argument("--data", metavar="CSV", help="bench data instead of the reference run")
+    cal.add_argument("--out", default="runs/calibration", help="output folder (default runs/calibration)")
+    cal.add_argument("--mesh-scale", type=int, default=1,
+                     help="reference mesh refinement: 1 default, 2 halves every cell (slow)")
+    cal.add_argument("--tension-max", type=float, default=0.25,
+                     help="highest cable tension of the reference run [N] (default 0.25)")
+    cal.add_argument("--levels", type=int, default=5, help="tension levels (default 5)")
+    cal.add_argument("--held-out", default="2",
+                     help="comma-separated static points left out of the fit (default 2)")
+    cal.set_defaults(func=_cmd_calibrate)
 
     po = with_params(sub.add_parser("pullout", help="holding force: pull the held object until it slips 5 mm"))
     po.add_argument("--objects", default="block,cylinder", help="comma-separated names")

@@ -32,13 +32,16 @@ RENDER_MODES = ["rgb_array", "depth_array"] + (
 
 def make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode, xy_actions,
                 frame_skip, reward_type, reward_weights, terminate_on_success, success_hold_s,
-                params) -> EnvConfig:
+                params, calibration=None) -> EnvConfig:
     if isinstance(objects, str):
         objects = tuple(o.strip() for o in objects.split(",") if o.strip())
     if params is None:
         params = GripperParams()
     elif not isinstance(params, GripperParams):
         params = GripperParams.load(params)
+    if calibration is not None:
+        from gripper.calibration.calfile import apply_calibration
+        params = apply_calibration(params, calibration)
     return EnvConfig(
         objects=tuple(objects), pose_noise=pose_noise, yaw_noise=yaw_noise, mass_noise=mass_noise,
         friction_noise=friction_noise, action_mode=action_mode, xy_actions=xy_actions,
@@ -191,11 +194,10 @@ class SoftGripperGraspEnv(gym.Env):
     | terminate_on_success | True | end the episode once the grasp is held |
     | success_hold_s | 1.0 | hold time that counts as success [s] |
     | params | None | GripperParams, or a JSON/TOML parameter file path |
+    | calibration | None | calibration JSON (``gripper calibrate``): fitted hinge springs replace those of ``params``; a file made for another design is refused |
     | render_mode | None | "rgb_array", "depth_array" or "human" (needs a display) |
     | width, height | 640, 480 | image size [px] |
     | camera | "front" | "front", "side", "top", "track" (follows the palm) or "palm" |
-
-    A calibration file (the calibration issue) is not accepted yet: that layer does not exist.
 
     ## Version history
 
@@ -215,10 +217,10 @@ class SoftGripperGraspEnv(gym.Env):
                  xy_actions: bool = False, frame_skip: int = 10, reward_type: str = "dense",
                  reward_weights: dict | None = None, terminate_on_success: bool = True,
                  success_hold_s: float = 1.0, params: Any = None, render_mode: str | None = None,
-                 width: int = 640, height: int = 480, camera: str = "front"):
+                 width: int = 640, height: int = 480, camera: str = "front", calibration: Any = None):
         self.config = make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode,
                                   xy_actions, frame_skip, reward_type, reward_weights, terminate_on_success,
-                                  success_hold_s, params)
+                                  success_hold_s, params, calibration)
         check_render_args(render_mode, width, height, camera)
         self._init_kwargs = dict(
             objects=self.config.objects, pose_noise=pose_noise, yaw_noise=yaw_noise, mass_noise=mass_noise,

@@ -221,13 +221,17 @@ def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
     held_windows = _held_out_mask(record, held)
     fit_samples = np.array([i for i in used if not held_windows[i]])
     n_par = nh * (2 if cfg.fit_damping else 1)
-    n_res = len(fit_samples) * (p.finger.n_segments - 1 + 2)
+    n_obs = (np.isfinite(record.element_angles_deg[fit_samples, 1:]).sum()
+             + np.isfinite(record.tip_xz_m[fit_samples]).sum())
+    n_res = int(n_obs)
     if n_res < n_par:
         raise ValueError(f"data: {len(fit_samples)} usable points give {n_res} residuals, "
                          f"fewer than the {n_par} parameters to fit")
 
-    target_ang = record.element_angles_deg - record.element_angles_deg[:, :1]
-    target_tip = record.tip_xz_m
+    target_ang = (record.element_angles_deg - record.element_angles_deg[:, :1])[fit_samples, 1:]
+    target_tip = record.tip_xz_m[fit_samples]
+    ang_ok, tip_ok = np.isfinite(target_ang), np.isfinite(target_tip)  # bench data may lack one
+    target_ang, target_tip = np.nan_to_num(target_ang), np.nan_to_num(target_tip)
 
     def unpack(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         k = np.exp(x[:nh])
@@ -240,8 +244,8 @@ def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
         runs = sim.run(np.array(ks).T, np.array(cs).T, tension, step_of_sample[fit_samples])
         cols = []
         for ang, tip, _ in runs:
-            ra = (ang[:, 1:] - target_ang[fit_samples, 1:]) / cfg.angle_sigma_deg
-            rt = (tip - target_tip[fit_samples]) / cfg.tip_sigma_m
+            ra = np.where(ang_ok, ang[:, 1:] - target_ang, 0.0) / cfg.angle_sigma_deg
+            rt = np.where(tip_ok, tip - target_tip, 0.0) / cfg.tip_sigma_m
             cols.append(np.hstack([ra, rt]).ravel())
         res = np.array(cols).T
         return res if x.ndim == 2 else res[:, 0]
@@ -318,11 +322,15 @@ def fit_metrics(record: BendingRecord, fitted: BendingRecord, p: GripperParams,
     da = fitted.element_angles_deg[fit_idx, 1:] - ref_ang[fit_idx, 1:]
     dt = np.linalg.norm(fitted.tip_xz_m[fit_idx] - record.tip_xz_m[fit_idx], axis=1)
     L = p.finger.length
+    with np.errstate(invalid="ignore"):
+        tip_rms = float(np.sqrt(np.nanmean(dt ** 2))) if np.isfinite(dt).any() else None
+        ang_rms = (np.sqrt(np.nanmean(da ** 2, axis=0)).tolist()
+                   if np.isfinite(da).any() else None)
     out = {
         "samples": int(len(fit_idx)),
-        "tip_rms_m": float(np.sqrt(np.mean(dt ** 2))),
-        "tip_rms_frac": float(np.sqrt(np.mean(dt ** 2)) / L),
-        "angle_rms_deg": np.sqrt(np.mean(da ** 2, axis=0)).tolist(),
+        "tip_rms_m": tip_rms,
+        "tip_rms_frac": tip_rms / L if tip_rms is not None else None,
+        "angle_rms_deg": ang_rms,
         "held_out": [],
     }
     for i in sorted(held):
@@ -330,9 +338,10 @@ def fit_metrics(record: BendingRecord, fitted: BendingRecord, p: GripperParams,
         tip_err = float(np.linalg.norm(fitted.tip_xz_m[j] - record.tip_xz_m[j]))
         bend_ref = float(ref_ang[j, -1])
         bend_fit = float(fitted.element_angles_deg[j, -1])
+        bend_err = abs(bend_fit - bend_ref) / max(abs(bend_ref), 1e-9)
         out["held_out"].append({
             "level": i, "tension_N": float(record.tension_N[j]),
-            "tip_error_frac": tip_err / L,
-            "bending_error_frac": abs(bend_fit - bend_ref) / max(abs(bend_ref), 1e-9),
+            "tip_error_frac": tip_err / L if math.isfinite(tip_err) else None,
+            "bending_error_frac": bend_err if math.isfinite(bend_err) else None,
         })
     return out

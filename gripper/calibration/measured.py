@@ -1,0 +1,132 @@
+"""Bench measurements as a bending record: the CSV format the fit accepts.
+
+One row per quasi-static load point (the finger at rest under a held cable tension). Columns
+(header names exactly as below, SI units, comma-separated, ``#`` lines are comments):
+
+============== ======= ==========================================================
+column         unit    meaning
+============== ======= ==========================================================
+tension_N      N       cable tension at the reel (required)
+r              -       cable shortening rate (optional; recorded, not fitted)
+angle_B2_deg   deg     rotation of element B2 from straight, positive curling to
+...                    the grasping face; one column per element B2..Bn
+tip_x_m        m       tip point (neutral axis at the distal face) along the finger
+tip_z_m        m       tip point towards the grasping face
+============== ======= ==========================================================
+
+Either all element-angle columns or both tip columns (or both sets) must be present. Tension is
+required: shortening alone fixes the kinematics, not the stiffness (any stiffness scale gives
+the same angles at equal shortening), so the fit needs the load.
+
+Example:
+    >>> rec = read_measured_csv("models/calibration/example_bench.csv", 6)   # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+
+from gripper.calibration.reference import BendingRecord
+
+
+def angle_columns(n_segments: int) -> list[str]:
+    return [f"angle_B{j}_deg" for j in range(2, n_segments + 1)]
+
+
+def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1
+                      ) -> BendingRecord:
+    """Read a bench CSV into a static :class:`BendingRecord` (missing observables are NaN).
+
+    Raises:
+        ValueError: one line naming the file, row and column at fault: unreadable file,
+            missing column, non-numeric or non-finite cell, or fewer rows than ``min_points``.
+    """
+    path = Path(path)
+    name = path.name
+    try:
+        lines = [ln for ln in path.read_text().splitlines()
+                 if ln.strip() and not ln.lstrip().startswith("#")]
+    except OSError as e:
+        raise ValueError(f"data file: cannot read {str(path)!r}: {e.strerror}") from None
+    except UnicodeDecodeError:
+        raise ValueError(f"data file {name}: not a text CSV file") from None
+    rows = list(csv.reader(lines))
+    if not rows:
+        raise ValueError(f"data file {name}: empty; need a header row with tension_N")
+    header = [h.strip() for h in rows[0]]
+    if "tension_N" not in header:
+        raise ValueError(f"data file {name}: missing column 'tension_N' (cable tension [N]); "
+                         f"shortening alone cannot fix the stiffness")
+    ang_cols = angle_columns(n_segments)
+    has_ang = [c in header for c in ang_cols]
+    has_tip = [c in header for c in ("tip_x_m", "tip_z_m")]
+    if any(has_ang) and not all(has_ang):
+        missing = [c for c, h in zip(ang_cols, has_ang, strict=True) if not h]
+        raise ValueError(f"data file {name}: missing column {missing[0]!r} (need every element "
+                         f"angle {ang_cols[0]}..{ang_cols[-1]} or none)")
+    if any(has_tip) and not all(has_tip):
+        raise ValueError(f"data file {name}: missing column "
+                         f"{'tip_z_m' if has_tip[0] else 'tip_x_m'!r} (need both tip columns)")
+    if not any(has_ang) and not any(has_tip):
+        raise ValueError(f"data file {name}: missing columns: need {ang_cols[0]}..{ang_cols[-1]} "
+                         f"or tip_x_m and tip_z_m")
+    wanted = ["tension_N"] + (["r"] if "r" in header else [])
+    wanted += ang_cols if all(has_ang) else []
+    wanted += ["tip_x_m", "tip_z_m"] if all(has_tip) else []
+    col = {c: header.index(c) for c in wanted}
+    values = {c: [] for c in wanted}
+    for lineno, row in enumerate(rows[1:], start=2):
+        if len(row) != len(header):
+            raise ValueError(f"data file {name}: row {lineno} has {len(row)} cells, the header "
+                             f"has {len(header)}")
+        for c in wanted:
+            cell = row[col[c]].strip()
+            try:
+                v = float(cell)
+            except ValueError:
+                raise ValueError(f"data file {name}: row {lineno}, column {c}: {cell!r} is not "
+                                 f"a number") from None
+            if not math.isfinite(v):
+                raise ValueError(f"data file {name}: row {lineno}, column {c}: {cell!r} is not "
+                                 f"a finite number")
+            values[c].append(v)
+    n = len(rows) - 1
+    if n < min_points:
+        raise ValueError(f"data file {name}: {n} data rows, fewer than the {min_points} "
+                         f"parameters to fit")
+    tension = np.array(values["tension_N"])
+    if (tension < 0).any():
+        bad = int(np.flatnonzero(tension < 0)[0]) + 2
+        raise ValueError(f"data file {name}: row {bad}, column tension_N: must be >= 0 N")
+    angles = np.full((n, n_segments), np.nan)
+    angles[:, 0] = 0.0
+    if all(has_ang):
+        angles[:, 1:] = np.column_stack([values[c] for c in ang_cols])
+    tip = np.full((n, 2), np.nan)
+    if all(has_tip):
+        tip[:] = np.column_stack([values["tip_x_m"], values["tip_z_m"]])
+    order = np.argsort(tension, kind="stable")
+    r = np.array(values["r"]) if "r" in values else np.full(n, np.nan)
+    return BendingRecord(t=np.arange(n, dtype=float), tension_N=tension[order], r=r[order],
+                         element_angles_deg=angles[order], tip_xz_m=tip[order],
+                         static=np.arange(n))
+
+
+def write_measured_csv(path: str | Path, record: BendingRecord, *, comment: str = "") -> Path:
+    """Write the static points of ``record`` in the bench CSV format."""
+    path = Path(path)
+    n_seg = record.element_angles_deg.shape[1]
+    header = ["tension_N", "r"] + angle_columns(n_seg) + ["tip_x_m", "tip_z_m"]
+    lines = [f"# {ln}" for ln in comment.splitlines()] + [",".join(header)]
+    for i in record.static:
+        ang = record.element_angles_deg[i] - record.element_angles_deg[i, 0]
+        cells = [f"{record.tension_N[i]:.4f}", f"{record.r[i]:.4f}"]
+        cells += [f"{a:.1f}" for a in ang[1:]]
+        cells += [f"{record.tip_xz_m[i, 0]:.4f}", f"{record.tip_xz_m[i, 1]:.4f}"]
+        lines.append(",".join(cells))
+    path.write_text("\n".join(lines) + "\n")
+    return path

@@ -1,0 +1,162 @@
+"""Calibration layer: mesh, fit identifiability, calibration files, bench CSV input."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from gripper.calibration.calfile import (Calibration, CalibrationMismatch, apply_calibration,
+                                         design_hash)
+from gripper.calibration.fit import FitConfig, HingeSimulator, fit_hinges, simulate_record
+from gripper.calibration.measured import angle_columns, read_measured_csv
+from gripper.calibration.mesh import MeshResolution, channel_side, finger_mesh
+from gripper.calibration.reference import BendingRecord, plateau_indices, tension_schedule
+from gripper.params import FingerGeometry, GripperParams
+
+G = FingerGeometry()
+
+
+def test_mesh_volume_is_the_moulded_body():
+    """Bar minus five triangular cuts minus the channel where it runs through silicone."""
+    m = finger_mesh(G)
+    tan = math.tan(math.radians(0.5 * G.cut_angle_deg))
+    cuts = (G.n_segments - 1) * (G.height - G.bridge_thickness) ** 2 * tan * G.width
+    gap = 2 * (G.hole_height - G.bridge_thickness) * tan  # cut width at the channel axis
+    chan = channel_side(G) ** 2 * (G.length - (G.n_segments - 1) * gap)
+    expected = G.length * G.width * G.height - cuts - chan
+    assert m.volume() == pytest.approx(expected, rel=1e-9)
+    a, b, c, d = (m.points[m.tets[:, i]] for i in range(4))
+    vol = np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a) / 6
+    assert (vol > 0).all()
+    assert len(m.anchor_nodes) >= 4
+    uniform = finger_mesh(G, MeshResolution(uniform=True))
+    assert uniform.volume() == pytest.approx(G.length * G.width * G.height, rel=1e-9)
+
+
+def test_finer_mesh_same_body():
+    fine = finger_mesh(G, MeshResolution(scale=2))
+    assert fine.n_nodes > 4 * finger_mesh(G).n_nodes
+    assert fine.volume() == pytest.approx(finger_mesh(G).volume(), rel=1e-9)
+
+
+def _synthetic(k_true, c_true, noise_deg, seed=0):
+    p = GripperParams()
+    sim = HingeSimulator(p, 5e-4)
+    t = np.arange(0, 2.0 + 1e-9, 0.01)
+    tens = tension_schedule(t, 3.0, 5, 2.0)
+    blank = BendingRecord(t=t, tension_N=tens, r=np.zeros_like(t),
+                          element_angles_deg=np.zeros((len(t), 6)),
+                          tip_xz_m=np.zeros((len(t), 2)), static=plateau_indices(t, 5, 2.0))
+    rec = simulate_record(sim, np.asarray(k_true), np.asarray(c_true), blank, 5e-4, False)
+    rng = np.random.default_rng(seed)
+    rec.element_angles_deg[:, 1:] += rng.normal(0.0, noise_deg, (len(t), 5))
+    return p, rec
+
+
+def test_identifiability_one_degree_noise():
+    """Known stiffnesses, 1° angle noise: each fitted back within 5 % (issue acceptance)."""
+    k_true = np.array([0.08, 0.10, 0.12, 0.09, 0.11])  # N·m/rad, around paper 000's 0.109
+    p, rec = _synthetic(k_true, np.full(5, 3e-4), 1.0)
+    fit = fit_hinges(rec, p, FitConfig())
+    np.testing.assert_allclose(fit.stiffness, k_true, rtol=0.05)
+    assert fit.metrics["held_out"][0]["bending_error_frac"] < 0.05
+
+
+def test_static_fit_of_bench_csv(tmp_path):
+    """A bench CSV written from a known hinge model is fitted back (static points only)."""
+    k_true = np.array([0.09, 0.11, 0.10, 0.12, 0.10])  # cuts stay open up to 3 N
+    p, rec = _synthetic(k_true, np.full(5, 3e-4), 0.0)
+    lines = ["tension_N," + ",".join(angle_columns(6)) + ",tip_x_m,tip_z_m"]
+    for i in rec.static:
+        ang = rec.element_angles_deg[i, 1:]
+        lines.append(f"{rec.tension_N[i]:.4f}," + ",".join(f"{a:.2f}" for a in ang)
+                     + f",{rec.tip_xz_m[i, 0]:.5f},{rec.tip_xz_m[i, 1]:.5f}")
+    csv = tmp_path / "bench.csv"
+    csv.write_text("\n".join(lines) + "\n")
+    data = read_measured_csv(csv, 6, min_points=5)
+    fit = fit_hinges(data, p, FitConfig(fit_damping=False, held_out=()))
+    np.testing.assert_allclose(fit.stiffness, k_true, rtol=0.05)
+
+
+@pytest.mark.parametrize("content, message", [
+    ("r,angle_B2_deg\n0.1,3\n", "missing column 'tension_N'"),
+    ("tension_N,angle_B2_deg,angle_B3_deg\n0.1,3,4\n", "missing column 'angle_B4_deg'"),
+    ("tension_N,tip_x_m\n0.1,0.09\n", "missing column 'tip_z_m'"),
+    ("tension_N,tip_x_m,tip_z_m\n0.1,abc,0.01\n", "row 2, column tip_x_m: 'abc' is not a number"),
+    ("tension_N,tip_x_m,tip_z_m\n0.1,nan,0.01\n", "row 2, column tip_x_m: 'nan' is not a finite"),
+    ("tension_N,tip_x_m,tip_z_m\n0.1,0.09,0.01\n0.2,0.08,0.02\n", "2 data rows, fewer than the 5"),
+])
+def test_bad_csv_one_clear_error(tmp_path, content, message):
+    f = tmp_path / "bad.csv"
+    f.write_text(content)
+    with pytest.raises(ValueError, match=message.replace("(", r"\(")):
+        read_measured_csv(f, 6, min_points=5)
+    proc = subprocess.run([sys.executable, "-m", "gripper.cli", "calibrate", "--data", str(f),
+                           "--out", str(tmp_path / "out")], capture_output=True, text=True)
+    assert proc.returncode == 2
+    assert len(proc.stderr.strip().splitlines()) == 1 and message.split(":")[0] in proc.stderr
+
+
+def _calibration(p, k=0.02):
+    return Calibration(design_hash=design_hash(p), source="measured", stiffness=(k,) * 5,
+                       damping=(2e-4,) * 5, rest_angle_deg=(0.0,) * 5)
+
+
+def test_calibration_file_round_trip_and_hash_refusal(tmp_path):
+    p = GripperParams()
+    path = _calibration(p).save(tmp_path / "cal.json")
+    data = json.loads(path.read_text())
+    assert data["schema"] == "gripper.calibration/1"
+    assert apply_calibration(p, path).springs.stiffness == (0.02,) * 5
+    other = p.replace(finger=p.finger.replace(bridge_thickness=0.004))
+    with pytest.raises(CalibrationMismatch, match="made for design"):
+        apply_calibration(other, path)
+    assert apply_calibration(other, path, force=True).springs.stiffness == (0.02,) * 5
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"schema": "gripper.calibration/1", "design_hash": "x", "fitted": {}}')
+    with pytest.raises(ValueError, match="stiffness_Nm_per_rad"):
+        Calibration.load(bad)
+
+
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "gripper.cli", *args], capture_output=True,
+                          text=True)
+
+
+def test_consumers_accept_calibration(tmp_path):
+    """bend and write-models take --calibration; a softer calibration bends more."""
+    p = GripperParams()
+    soft = _calibration(p, k=0.05).save(tmp_path / "soft.json")
+    base = _cli("bend", "--json", "--r-max", "0.1", "--duration", "0.5")
+    cal = _cli("bend", "--json", "--r-max", "0.1", "--duration", "0.5", "--calibration", str(soft))
+    assert base.returncode == 0 and cal.returncode == 0, cal.stderr
+    t_base = json.loads(base.stdout)["tension_N"][-1]
+    t_cal = json.loads(cal.stdout)["tension_N"][-1]
+    assert t_cal < 0.7 * t_base  # k 0.05 vs 0.109 N·m/rad: same bend, less tension
+    out = tmp_path / "models"
+    w = _cli("write-models", "--out", str(out), "--calibration", str(soft))
+    assert w.returncode == 0, w.stderr
+    xml = next(out.rglob("*.xml")).read_text() if list(out.rglob("*.xml")) else ""
+    assert "0.05" in xml
+    other = tmp_path / "other.json"
+    Calibration(design_hash="0" * 16, source="measured", stiffness=(0.05,) * 5,
+                damping=(2e-4,) * 5, rest_angle_deg=(0.0,) * 5).save(other)
+    r = _cli("bend", "--json", "--calibration", str(other))
+    assert r.returncode == 2 and "made for design" in r.stderr
+    assert _cli("bend", "--json", "--r-max", "0.05", "--duration", "0.2", "--calibration",
+                str(other), "--force-calibration").returncode == 0
+
+
+def test_env_accepts_calibration(tmp_path):
+    import gymnasium as gym
+
+    p = GripperParams()
+    path = _calibration(p, k=0.05).save(tmp_path / "cal.json")
+    env = gym.make("gripper:SoftGripperGrasp-v0", calibration=str(path))
+    assert env.unwrapped.config.params.springs.stiffness == (0.05,) * 5
+    env.close()
