@@ -11,6 +11,12 @@ Video, pictures and design studies:
     >>> record_trial_video("balloon", "balloon.mp4", camera="track")               # doctest: +SKIP
     >>> run_study(load_study("models/studies/one_at_a_time.toml"), "runs/oat")      # doctest: +SKIP
 
+Calibration of the hinge springs against the flex reference finger or bench data:
+
+    >>> from gripper import calibrate, apply_calibration                             # doctest: +SKIP
+    >>> cal, fit, record = calibrate("runs/calibration")                             # doctest: +SKIP
+    >>> p = apply_calibration(GripperParams(), "runs/calibration/calibration.json")  # doctest: +SKIP
+
 The Gymnasium environment ``SoftGripperGrasp-v0`` is registered on import:
 
     >>> import gymnasium as gym
@@ -21,6 +27,10 @@ from gripper.render import choose_gl_backend
 choose_gl_backend()  # before anything imports mujoco: headless EGL unless MUJOCO_GL is set
 
 from gripper.bench import BenchConfig, run_benchmark, wilson_interval
+from gripper.calibration.calfile import Calibration, apply_calibration, design_hash
+from gripper.calibration.fit import FitConfig, fit_hinges
+from gripper.calibration.pipeline import calibrate
+from gripper.calibration.reference import ReferenceConfig, run_reference
 from gripper.env import SoftGripperGraspEnv
 from gripper.figures import bending_figure, success_plot
 from gripper.model import build_bending_spec, build_gripper_spec, build_scene_spec
@@ -35,7 +45,8 @@ __all__ = ["GripperParams", "build_gripper_spec", "build_scene_spec", "build_ben
            "GraspObject", "Placement", "get_object", "mesh_object", "GraspProtocol", "TrialNoise",
            "run_trial", "run_pullout", "BenchConfig", "run_benchmark", "wilson_interval",
            "SoftGripperGraspEnv", "record_trial_video", "bending_figure", "success_plot", "load_study",
-           "run_study"]
+           "run_study", "Calibration", "apply_calibration", "design_hash", "FitConfig", "fit_hinges",
+           "calibrate", "ReferenceConfig", "run_reference"]
 __version__ = "0.2.0"
 
 

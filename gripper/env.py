@@ -194,7 +194,7 @@ class SoftGripperGraspEnv(gym.Env):
     | terminate_on_success | True | end the episode once the grasp is held |
     | success_hold_s | 1.0 | hold time that counts as success [s] |
     | params | None | GripperParams, or a JSON/TOML parameter file path |
-    | calibration | None | calibration JSON (``gripper calibrate``): fitted hinge springs replace those of ``params``; a file made for another design is refused |
+    | calibration | None | calibration JSON (``gripper calibrate``): fitted hinge springs for ``params`` |
     | render_mode | None | "rgb_array", "depth_array" or "human" (needs a display) |
     | width, height | 640, 480 | image size [px] |
     | camera | "front" | "front", "side", "top", "track" (follows the palm) or "palm" |

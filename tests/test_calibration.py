@@ -10,8 +10,7 @@ import sys
 import numpy as np
 import pytest
 
-from gripper.calibration.calfile import (Calibration, CalibrationMismatch, apply_calibration,
-                                         design_hash)
+from gripper.calibration.calfile import Calibration, CalibrationMismatch, apply_calibration, design_hash
 from gripper.calibration.fit import FitConfig, HingeSimulator, fit_hinges, simulate_record
 from gripper.calibration.measured import angle_columns, read_measured_csv
 from gripper.calibration.mesh import MeshResolution, channel_side, finger_mesh
@@ -160,3 +159,29 @@ def test_env_accepts_calibration(tmp_path):
     env = gym.make("gripper:SoftGripperGrasp-v0", calibration=str(path))
     assert env.unwrapped.config.params.springs.stiffness == (0.05,) * 5
     env.close()
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="linear tetrahedra lock in bending at Poisson 0.48: the "
+                   "default mesh is much stiffer than the closed form (README, known limitation)")
+def test_uniform_beam_end_moment_within_5_percent():
+    """Issue acceptance: a uniform bar meshed the same way bends under an end moment within 5 %
+    of the elastica (uniform curvature M/EI: tip rotation M·L/EI)."""
+    from gripper.calibration.reference import beam_end_moment_check
+
+    b = beam_end_moment_check(theta=1.0)
+    assert b["max_speed"] < 1e-4  # at rest
+    assert abs(b["ratio"] - 1.0) < 0.05 and b["tip_error_frac"] < 0.05
+
+
+@pytest.mark.slow
+def test_reference_short_run_bends_monotonically_and_stably():
+    """A short reference run: straight at zero tension, element angles rising from base to tip,
+    no MuJoCo warnings (the run raises SimulationUnstable otherwise)."""
+    from gripper.calibration.reference import ReferenceConfig, run_reference
+
+    rec = run_reference(config=ReferenceConfig(duration=0.3, n_levels=1, tension_max=0.1))
+    assert np.abs(rec.element_angles_deg[0]).max() < 0.1
+    last = rec.element_angles_deg[-1]
+    assert (np.diff(last) > 0).all()
+    assert rec.r[-1] > 0 and rec.warnings == 0

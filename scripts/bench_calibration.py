@@ -1,0 +1,89 @@
+"""Calibration benchmark: reference and fit wall times, the hinge model's speed-up measured in
+the same run, the uniform-beam check and the mesh-convergence table.
+
+    .venv/bin/python scripts/bench_calibration.py [--out runs/bench_calibration] [--skip-fine]
+
+Prints figures and writes ``results.json`` (plus the calibration report) into ``--out``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import time
+from pathlib import Path
+
+from gripper.bending import BendingConfig, run_bending_test
+from gripper.calibration.calfile import apply_calibration
+from gripper.calibration.mesh import MeshResolution
+from gripper.calibration.pipeline import calibrate
+from gripper.calibration.reference import beam_end_moment_check, static_bend
+from gripper.params import GripperParams
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--out", default="runs/bench_calibration")
+    ap.add_argument("--skip-fine", action="store_true", help="skip the scale-2 meshes (slow)")
+    ap.add_argument("--checks-only", action="store_true",
+                    help="only the beam check and the convergence table")
+    args = ap.parse_args()
+    out = Path(args.out)
+    results: dict = {}
+    p = GripperParams()
+
+    if not args.checks_only:
+        reference_and_fit(out, p, results)
+    checks(p, results, args.skip_fine)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / ("checks.json" if args.checks_only else "results.json")).write_text(
+        json.dumps(results, indent=2) + "\n")
+
+
+def reference_and_fit(out: Path, p: GripperParams, results: dict) -> None:
+    t0 = time.perf_counter()
+    cal, fit, record = calibrate(out, p, on_progress=print)
+    results["calibrate_total_s"] = time.perf_counter() - t0
+    results["reference_wall_s"] = record.wall_time_s
+    results["fit_wall_s"] = fit.wall_time_s
+    results["metrics"] = cal.metrics
+    results["stiffness_Nm_per_rad"] = list(cal.stiffness)
+    results["damping_Nms_per_rad"] = list(cal.damping)
+    print(f"reference bending test {record.wall_time_s:.1f} s, fit {fit.wall_time_s:.1f} s")
+
+    calibrated = apply_calibration(p, out / "calibration.json")
+    cfg = BendingConfig(r_max=0.1)  # the paper's 2 s at 5e-4 s, same step as the reference
+    hinge = [run_bending_test(cfg, calibrated).wall_time_s for _ in range(5)]
+    results["hinge_bending_median_s"] = statistics.median(hinge)
+    results["speedup"] = record.wall_time_s / statistics.median(hinge)
+    print(f"calibrated hinge bending test median {statistics.median(hinge):.4f} s: "
+          f"{results['speedup']:.0f}x faster than the reference")
+
+
+
+def checks(p: GripperParams, results: dict, skip_fine: bool) -> None:
+    meshes = {"default": MeshResolution()}
+    if not skip_fine:
+        meshes["scale 2"] = MeshResolution(scale=2)
+    results["beam"] = {}
+    results["convergence"] = {}
+    for name, mesh in meshes.items():
+        b = beam_end_moment_check(p, mesh)
+        results["beam"][name] = b
+        print(f"beam, {name} mesh ({b['nodes']} nodes): tip angle / closed form "
+              f"{b['ratio']:.3f}, tip error {100 * b['tip_error_frac']:.1f} % of length "
+              f"({b['wall_time_s']:.0f} s)")
+        s = static_bend(p, mesh)
+        results["convergence"][name] = s
+        print(f"finger at 0.15 N, {name} mesh ({s['nodes']} nodes): bending "
+              f"{s['bending_angle_deg']:.2f} deg ({s['wall_time_s']:.0f} s)")
+    if "scale 2" in results["convergence"]:
+        a = results["convergence"]["default"]["bending_angle_deg"]
+        b = results["convergence"]["scale 2"]["bending_angle_deg"]
+        results["convergence_change"] = abs(b - a) / abs(b)
+        print(f"bending angle change default -> scale 2: {100 * results['convergence_change']:.1f} %")
+
+
+if __name__ == "__main__":
+    main()
