@@ -63,7 +63,7 @@ class ReferenceConfig:
     Attributes:
         mesh: mesh resolution (see :class:`MeshResolution`).
         tension_max: highest cable tension [N]. Default 0.25 N: keeps the default finger's
-            cuts open (largest hinge angle about 14°, a third of the 41° closing angle), since
+            cuts open (largest hinge angle about 10°, a quarter of the 41° closing angle), since
             the reference does not model contact between cut faces.
         n_levels: number of tension steps (quasi-static points) [-].
         duration: length of the whole test [s] (paper 000 §IV: 2 s).
