@@ -160,7 +160,7 @@ def _cmd_calibrate(args) -> int:
     from gripper.calibration.reference import ReferenceConfig
     from gripper.calibration.report import error_table, format_table
 
-    p = GripperParams.load(args.params) if args.params else GripperParams().validate()
+    p = _params(args)
     ref = ReferenceConfig(mesh=MeshResolution(scale=args.mesh_scale),
                           tension_max=args.tension_max, n_levels=args.levels)
     held = tuple(int(v) for v in args.held_out.split(",") if v.strip()) if args.held_out else ()

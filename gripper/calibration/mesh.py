@@ -77,8 +77,6 @@ class FingerMesh:
     Attributes:
         points: node coordinates, shape (n, 3) [m].
         tets: node indices of each tetrahedron, positively oriented, shape (m, 4).
-        element_of_node: index of the element (0 = B1) each node belongs to; nodes shared by two
-            elements (the bridge under a cut) belong to the proximal one, shape (n,).
         nodes_of_element: node indices of each element, shared bridge nodes in both.
         channel_nodes: per element, the nodes on the cable channel's wall.
         anchor_nodes: nodes on the channel's rim at the tip's distal face (where the cable is

@@ -167,11 +167,6 @@ class BendingRecord:
     wall_time_s: float = 0.0
     warnings: int = 0
 
-    @property
-    def bending_angle_deg(self) -> np.ndarray:
-        """Tip element's angle relative to the base element [deg]."""
-        return self.element_angles_deg[:, -1] - self.element_angles_deg[:, 0]
-
     def to_json_dict(self) -> dict:
         return {k: (v.tolist() if isinstance(v, np.ndarray) else v)
                 for k, v in self.__dict__.items()}
@@ -333,9 +328,8 @@ __all__ = ["BendingRecord", "ReferenceConfig", "ReferenceFinger", "SimulationUns
 
 def _relaxation_config(mesh: MeshResolution) -> ReferenceConfig:
     """5 ms implicit steps with Rayleigh damping 0.05 s: creeps to rest for static checks."""
-    f1 = 2.5
-    return ReferenceConfig(mesh=mesh, timestep=5e-3, first_mode_hz=f1,
-                           damping_ratio=0.05 * math.pi * f1)
+    f1 = ReferenceConfig.first_mode_hz  # beta = 2 zeta / (2 pi f1) = 0.05 s
+    return ReferenceConfig(mesh=mesh, timestep=5e-3, damping_ratio=0.05 * math.pi * f1)
 
 
 def beam_end_moment_check(params: GripperParams | None = None,
