@@ -166,20 +166,24 @@ class HingeSimulator:
             m.dof_damping[self.dof] = damping[:, i]
             models.append(m)
         ctrl = np.asarray(tension, dtype=float).reshape(1, -1, 1)
-        _, sens = mujoco.rollout.rollout(models, self.datas[:max(1, min(k, self.nthread))],
-                                         self.state0, ctrl, skip_checks=False)
+        state, sens = mujoco.rollout.rollout(models, self.datas[:max(1, min(k, self.nthread))],
+                                             self.state0, ctrl, skip_checks=False)
         out = []
         nh = self.n_hinges
         for i in range(k):
             s = sens[i][sample]
-            if not np.isfinite(s).all():
-                raise FloatingPointError("hinge model diverged during the fit")
+            # MuJoCo resets a diverging simulation to its initial state: the clock jumps back.
+            if not np.isfinite(s).all() or np.any(np.diff(state[i][:, 0]) <= 0):
+                s = np.full_like(s, DIVERGED)  # a huge residual: the solver steps away
             q = s[:, :nh]
             angles = np.degrees(np.hstack([np.zeros((len(s), 1)), np.cumsum(q, axis=1)]))
             tip = s[:, [nh, nh + 2]]
             r = (self.length0 - s[:, nh + 3]) / self.p.finger.length
             out.append((angles, tip, r))
         return out
+
+
+DIVERGED = 1.0e3  # value given to every output of a diverged trial point [rad, m]
 
 
 def _history(record: BendingRecord, timestep: float, static_only: bool

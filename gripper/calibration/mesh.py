@@ -5,8 +5,8 @@ neighbours by a triangular notch whose apex sits on the bridge top, with a cable
 every element. The mesh is *mapped*: each element is a structured block of hexahedral cells whose
 columns lean with the cut faces above the bridge, so the cut faces are exact planes of the mesh;
 below the bridge top the elements share their boundary nodes, so the bridges are continuous.
-Every hexahedron is split into six tetrahedra (Kuhn split, the same diagonal everywhere, so
-neighbouring cells conform).
+Every hexahedron is split into 24 tetrahedra around a node at its centre and one at the centre of
+each face (``split="centre24"``); the face nodes are shared, so neighbouring cells conform.
 
 Choices (written down because no paper gives them):
 
@@ -16,7 +16,12 @@ Choices (written down because no paper gives them):
 * **Grading**: nodes along each element are spaced by a cosine law, fine at both ends (2.3 mm at
   the default resolution) where the bridges bend, coarse in the stiff middle of the element.
 * **Resolution**: ``MeshResolution.scale`` multiplies every cell count; 1 is the default used
-  for calibration, 2 halves every cell edge (the convergence check).
+  for calibration.
+* **Split**: linear tetrahedra lock in bending, and badly so when nearly incompressible
+  (Poisson 0.48). On the uniform-beam check (:func:`~gripper.calibration.reference.beam_end_moment_check`,
+  default counts) the six-tetrahedron Kuhn split reaches 0.53 of the closed-form curvature, the
+  24-tetrahedron centre split 0.96, with 3.5x the nodes. A 12-tetrahedron split (centre node only)
+  reached 0.67. So ``centre24`` is the default; ``kuhn6`` stays for quick looks.
 
 Example:
     >>> from gripper.params import FingerGeometry
@@ -43,14 +48,18 @@ class MeshResolution:
     Attributes:
         scale: refinement factor applied to every count [-]; 1 default, 2 for convergence.
         along: cells along one element (x), cosine-graded [-]. Default 4: 2.3 mm at the ends
-            (6 runs 2x slower; the difference is in the convergence table of the README).
-        bridge: cells through the bridge thickness [-]. Default 2 (1.5 mm): bending of the
-            bridge needs at least two linear tetrahedra through its thickness.
+            where the bridges bend (3 runs 1.7x faster but bends 12 % less; the README's
+            convergence table has the figures).
+        bridge: cells through the bridge thickness [-]. Default 2 (1.5 mm): the bridges carry
+            the bending, so they get two cells through their thickness.
         below_hole: cells from the bridge top to the channel floor [-]. Default 2.
         channel: cells across the channel's height and width [-]. Default 1.
         above_hole: cells from the channel roof to the grasping face [-]. Default 1.
         side: cells across each side wall of the channel (y) [-]. Default 1.
         uniform: no channel and no cuts (a plain bar of the same size): the beam check.
+        split: tetrahedra per hexahedral cell: ``"centre24"`` (default: 24, around centre and
+            face nodes; little locking), ``"centre12"`` (12, centre node only) or ``"kuhn6"``
+            (6, no added nodes; locks, see the module docstring).
     """
 
     scale: int = 1
@@ -61,8 +70,11 @@ class MeshResolution:
     above_hole: int = 1
     side: int = 1
     uniform: bool = False
+    split: str = "centre24"
 
     def validate(self) -> MeshResolution:
+        if self.split not in SPLITS:
+            raise ValueError(f"mesh.split: must be one of {', '.join(SPLITS)}, got {self.split!r}")
         for name in ("scale", "along", "bridge", "below_hole", "channel", "above_hole", "side"):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or not 1 <= v <= 32:
@@ -92,6 +104,10 @@ class FingerMesh:
     @property
     def n_nodes(self) -> int:
         return len(self.points)
+
+    def tet_volumes(self) -> np.ndarray:
+        """Signed volume of each tetrahedron [m³] (positive: positively oriented)."""
+        return _signed_volumes(self.points, self.tets)
 
     def volume(self) -> float:
         """Total volume of the tetrahedra [m³]."""
@@ -123,6 +139,15 @@ _KUHN = [
     [(0, 0, 0), (0, 1, 0), (0, 1, 1), (1, 1, 1)],
     [(0, 0, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1)],
     [(0, 0, 0), (0, 0, 1), (0, 1, 1), (1, 1, 1)],
+]
+
+
+SPLITS = ("kuhn6", "centre12", "centre24")
+# The six faces of the unit cube, each as its four corners in cyclic order.
+_FACES = [
+    [(0, 0, 0), (0, 1, 0), (0, 1, 1), (0, 0, 1)], [(1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1)],
+    [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)], [(0, 1, 0), (1, 1, 0), (1, 1, 1), (0, 1, 1)],
+    [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)],
 ]
 
 
@@ -182,14 +207,40 @@ def finger_mesh(g: FingerGeometry, res: MeshResolution | None = None) -> FingerM
                     ids[i, j, k] = key_to_id[key]
         elem_nodes: set[int] = set()
         chan: set[int] = set()
+
+        def _centre_node(corners: tuple[int, ...], owner: set[int] = elem_nodes) -> int:
+            """The node at the centre of ``corners`` (a face or a cell), made once."""
+            key = ("centre", corners)
+            if key not in key_to_id:
+                key_to_id[key] = len(points)
+                points.append(tuple(np.mean([points[c] for c in corners], axis=0)))
+            owner.add(key_to_id[key])
+            return key_to_id[key]
+
         for i in range(nx):
             for j in range(len(y_lv) - 1):
                 for k in range(len(z_lv) - 1):
                     if not res.uniform and in_channel(j, k):
                         chan.update(ids[i:i + 2, j:j + 2, k:k + 2].ravel().tolist())
                         continue
-                    for tet in _KUHN:
-                        tets.append([int(ids[i + di, j + dj, k + dk]) for di, dj, dk in tet])
+                    if res.split == "kuhn6":
+                        for tet in _KUHN:
+                            tets.append([int(ids[i + di, j + dj, k + dk])
+                                         for di, dj, dk in tet])
+                    else:
+                        corner = ids[i:i + 2, j:j + 2, k:k + 2]
+                        centre = _centre_node(tuple(sorted(corner.ravel().tolist())))
+                        for face in _FACES:
+                            f = [int(corner[c]) for c in face]
+                            if res.split == "centre24":
+                                fc = _centre_node(tuple(sorted(f)))
+                                for q in range(4):
+                                    tets.append([f[q], f[(q + 1) % 4], fc, centre])
+                            else:  # the diagonal from the face's lowest node id: conforming
+                                q = int(np.argmin(f))
+                                a, b, c, d = (f[(q + r) % 4] for r in range(4))
+                                tets.append([a, b, c, centre])
+                                tets.append([a, c, d, centre])
                     elem_nodes.update(ids[i:i + 2, j:j + 2, k:k + 2].ravel().tolist())
         nodes_of_element.append(elem_nodes)
         channel_nodes.append(chan & elem_nodes)

@@ -47,7 +47,7 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
     else:
         ref_cfg = (reference or ReferenceConfig()).validate()
         fit_cfg = fit or FitConfig()
-        say("reference run (flex finger, this takes a minute or two) ...")
+        say("reference run (flex finger, this takes several minutes) ...")
         record = run_reference(p, ref_cfg)
         source, settings = "reference", {"reference": ref_cfg.to_dict()}
         (out / "reference.json").write_text(json.dumps(record.to_json_dict()) + "\n")
