@@ -27,8 +27,9 @@ damping, ``alpha`` times the node's mass): the first bending mode ``f1``
 (:attr:`ReferenceConfig.first_mode_hz`), which carries the bending test, gets zeta = 0.5, and
 higher modes less. Stiffness-proportional (Rayleigh beta) damping, the alternative MuJoCo's flex
 offers, would damp the stiff volumetric modes of this nearly incompressible body with ratios in
-the thousands; that made the implicit solve ill-conditioned and the test 4x slower (measured:
-24.7 s against 6.1 s for the first 0.2 s). The flex keeps only a small stiffness-proportional
+the thousands; that made the implicit solve ill-conditioned and the test 4x slower (measured on
+the Kuhn-split mesh: 24.7 s against 6.1 s for the first 0.2 s). The flex keeps only a small
+stiffness-proportional
 damping, :attr:`ReferenceConfig.mesh_mode_damping`, for the mesh-scale modes that
 mass-proportional damping leaves almost undamped.
 
