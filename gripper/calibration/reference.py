@@ -29,9 +29,8 @@ higher modes less. Stiffness-proportional (Rayleigh beta) damping, the alternati
 offers, would damp the stiff volumetric modes of this nearly incompressible body with ratios in
 the thousands; that made the implicit solve ill-conditioned and the test 4x slower (measured on
 the Kuhn-split mesh: 24.7 s against 6.1 s for the first 0.2 s). The flex keeps only a small
-stiffness-proportional
-damping, :attr:`ReferenceConfig.mesh_mode_damping`, for the mesh-scale modes that
-mass-proportional damping leaves almost undamped.
+stiffness-proportional damping, :attr:`ReferenceConfig.mesh_mode_damping`, for the mesh-scale
+modes that mass-proportional damping leaves almost undamped.
 
 **Gravity** is off: the hinge model's bending test lies in a horizontal plane, where gravity
 loads only the hinge bearings, so the calibration compares the cable-spring balance alone.
