@@ -250,7 +250,6 @@ class ReferenceFinger:
         self.model = mujoco.MjModel.from_xml_string(
             _flexcomp_xml(self.p, self.mesh, self.pinned, self.cfg))
         self.data = mujoco.MjData(self.model)
-        mujoco.mj_forward(self.model, self.data)
         free = np.ones(len(pts), dtype=bool)
         free[self.pinned] = False
         self.body_of_node = np.full(len(pts), -1)
@@ -274,9 +273,7 @@ class ReferenceFinger:
         np.add.at(lumped, mesh.tets.ravel(), np.repeat(0.25 * tet_mass, 4))
         bodies = self.body_of_node[self.free]
         m.body_mass[bodies] = lumped[self.free]
-        alpha = self.cfg.mass_damping
-        for j in range(m.njnt):
-            m.dof_damping[m.jnt_dofadr[j]] = alpha * m.body_mass[m.jnt_bodyid[j]]
+        m.dof_damping[m.jnt_dofadr] = self.cfg.mass_damping * m.body_mass[m.jnt_bodyid]
         mujoco.mj_setConst(m, self.data)
         mujoco.mj_forward(m, self.data)
 
