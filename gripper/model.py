@@ -108,11 +108,13 @@ def _add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.Mjs
     hinge.joint.axis = [0, -1, 0]  # positive angle closes the cut (curls towards +z)
     hinge.joint.limited = mujoco.mjtLimited.mjLIMITED_TRUE
     # Closed cut = silicone face on silicone face, far stiffer than the bridge: a stiff limit
-    # (time constant four steps, impedance 0.999), so the cable cannot pull a hinge past its
-    # closure (< 0.5° overrun up to half the stall tension, 0.64° at stall). Two steps,
-    # MuJoCo's floor, diverged in the smoke test with 12-element fingers curled on themselves.
+    # (time constant four steps, impedance 0.9995). A limit's static overrun grows as
+    # (1 - d) x timeconst^2 / (effective inertia), and the distal segments weigh grams, so d sets
+    # it: 0.999 let a hinge overrun 0.64° at stall tension at 5e-4 s (12° at the trials' 2 ms);
+    # 0.9995 gives 0.32° (6° at 2 ms). 0.9998 and 0.9999 (MuJoCo's cap) diverged in random-control
+    # smoke runs of 12-element fingers at 1 ms, as did a two-step time constant.
     hinge.joint.solref_limit = [4.0 * p.sim.timestep, 1.0]
-    hinge.joint.solimp_limit = [0.999, 0.999, 0.001, 0.5, 2.0]
+    hinge.joint.solimp_limit = [0.9995, 0.9995, 0.001, 0.5, 2.0]
     pad = spec.add_default("pad", root)
     pad.site.type = mujoco.mjtGeom.mjGEOM_BOX
     pad.site.group = 4

@@ -82,9 +82,6 @@ def test_bad_config():
         run_bending_test(BendingConfig(r_max=0.9))  # beyond the servo's travel
 
 
-@pytest.mark.xfail(strict=True, reason="known mismatch: at full stall tension (54 N) the soft "
-                   "joint limit lets a closed hinge overrun by about 0.64°; a stiffer limit "
-                   "diverged in the 12-element smoke test (see model README)")
 def test_hinge_limits_held_at_stall(closing_run):
     p, res = closing_run
     assert res.joint_angles_deg.max() <= p.finger.closure_angle_deg + 0.5
