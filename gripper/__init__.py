@@ -17,6 +17,12 @@ Calibration of the hinge springs against the flex reference finger or bench data
     >>> cal, fit, record = calibrate("runs/calibration")                             # doctest: +SKIP
     >>> p = apply_calibration(GripperParams(), "runs/calibration/calibration.json")  # doctest: +SKIP
 
+Damage models checked with a platen crush (the balloon bursts when flattened):
+
+    >>> from gripper import crush_test
+    >>> crush_test("balloon", depth=0.040)["damaged"]                    # doctest: +SKIP
+    True
+
 The Gymnasium environment ``SoftGripperGrasp-v0`` is registered on import:
 
     >>> import gymnasium as gym
@@ -31,6 +37,7 @@ from gripper.calibration.calfile import Calibration, apply_calibration, design_h
 from gripper.calibration.fit import FitConfig, fit_hinges
 from gripper.calibration.pipeline import calibrate
 from gripper.calibration.reference import ReferenceConfig, run_reference
+from gripper.crush import crush_test
 from gripper.env import SoftGripperGraspEnv
 from gripper.figures import bending_figure, success_plot
 from gripper.model import build_bending_spec, build_gripper_spec, build_scene_spec
@@ -46,7 +53,7 @@ __all__ = ["GripperParams", "build_gripper_spec", "build_scene_spec", "build_ben
            "run_trial", "run_pullout", "BenchConfig", "run_benchmark", "wilson_interval",
            "SoftGripperGraspEnv", "record_trial_video", "bending_figure", "success_plot", "load_study",
            "run_study", "Calibration", "apply_calibration", "design_hash", "FitConfig", "fit_hinges",
-           "calibrate", "ReferenceConfig", "run_reference"]
+           "calibrate", "ReferenceConfig", "run_reference", "crush_test"]
 __version__ = "0.2.0"
 
 

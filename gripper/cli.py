@@ -211,6 +211,21 @@ def _cmd_pullout(args) -> int:
     return 0
 
 
+def _cmd_crush(args) -> int:
+    from gripper.crush import crush_test
+
+    for name in _csv_objects(args.objects):
+        res = crush_test(name, args.depth, speed=args.speed, hold_s=args.hold, params=_params(args))
+        if args.json:
+            print(json.dumps(res))
+            continue
+        flag = "DAMAGED" if res["damaged"] else "intact"
+        print(f"{name:<10} pressed {res['depth_m'] * 1e3:g} mm: {flag}, {res['damage_measure_name']} "
+              f"{res['damage_measure']:.4g} (limit {res['damage_limit']:g}), peak plate force "
+              f"{res['peak_plate_force_N']:.2f} N")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="gripper",
@@ -343,6 +358,18 @@ def build_parser() -> argparse.ArgumentParser:
     po.add_argument("--rate", type=float, default=20.0, help="pull ramp [N/s] (default 20)")
     po.add_argument("--max-force", type=float, default=100.0, help="largest pull [N] (default 100)")
     po.set_defaults(func=_cmd_pullout)
+
+    cr = with_params(sub.add_parser(
+        "crush", help="press objects between the floor and a plate, report their damage measure",
+        description="Platen crush test: a rigid plate presses each object --depth below its top at "
+                    "--speed, holds --hold seconds and lifts off; prints the object's damage measure "
+                    "(balloon/bag: peak edge strain; paper box: permanent dent; rigid: plate force)."))
+    cr.add_argument("--objects", default="balloon,paper_box", help="comma-separated names")
+    cr.add_argument("--depth", type=float, default=0.020, help="press depth below the object's top [m] (default 0.02)")
+    cr.add_argument("--speed", type=float, default=0.02, help="plate speed [m/s] (default 0.02)")
+    cr.add_argument("--hold", type=float, default=0.2, help="hold time at depth [s] (default 0.2)")
+    cr.add_argument("--json", action="store_true", help="one JSON object per line")
+    cr.set_defaults(func=_cmd_crush)
     return parser
 
 

@@ -123,15 +123,19 @@ class GraspObject:
 # stiffness 2πRΔp. Small latex balloons run at Δp ≈ 2-4 kPa (the pressure maximum of the
 # balloon's inflation curve); 3 kPa at R = 0.028 m gives ≈ 530 N/m. The balloon is a 3D flex
 # (tetrahedra to its centre, trilinear dofs) with an effective Young's modulus of 50 kPa, an
-# assumption: pressed by a free plate on the floor it gives ≈ 570 N/m between 1 N and 2 N
-# (4-9 mm of compression), near the 530 N/m estimate; below 1 N the coarse flex is softer.
+# assumption: pressed between the floor and a plate (gripper.crush, stiff flex contact, see
+# FLEX_CONTACT_SOLREF) it takes 2.7 N at 6 mm and 4.8 N at 9 mm below its top, against 3.2 N
+# and 4.8 N from F = 2πRΔp·δ.
 # Burst: latex tears at an elongation of 700-800 % (stretch ≈ 8); an inflated balloon already
 # runs at stretch ≈ 3-4, and stress concentrates where a finger edge presses. We count a burst
 # when any surface edge of the flex stretches more than 25 % beyond its inflated length, a
 # conservative limit (≈ one third of the remaining stretch margin 8/3.5 - 1 ≈ 1.3).
+# Closing command 1.2 rad of spool: the fingers wrap the balloon and hold it with about 6 N in
+# all (edge strain 0.05-0.11 on trials 0-9 of seed 0); 1.4 rad squeezed it to 0.09-0.13 and 1.6
+# rad burst one trial of four, and the servo's full travel (3.0 rad) bursts every one (0.33-0.48).
 BALLOON = GraspObject(
     name="balloon", kind="balloon", size=(0.028, 0.028, 0.028), mass=0.004, friction=1.0,
-    yaw_symmetric=True, close_command=1.6, damage_limit=0.25,
+    yaw_symmetric=True, close_command=1.2, damage_limit=0.25,
     damage_measure="peak membrane edge strain [-] (burst above the limit)",
     youngs_modulus=5.0e4,
     notes="silicone on latex is grippy (μ ≈ 1); effective modulus see objects.py")
@@ -321,10 +325,23 @@ def add_object(spec: mujoco.MjSpec, obj: GraspObject, place: Placement = Placeme
         raise ValueError(f"object.{obj.name}.kind: unknown kind {obj.kind!r}")
 
 
+# Contact of deformable objects (with fingers, palm and floor; the flex has priority, so its values
+# are used). MuJoCo's default contact (20 ms time constant, impedance 0.9-0.95) is stiff in
+# proportion to the effective mass at the contact, and a flex spreads a few grams over ~100
+# vertices: a plate pressing the 4 g balloon sank 10-20 mm into it and the balloon under it sank as
+# far into the floor (gripper.crush), so the squeeze was taken by the contacts, not by the balloon's
+# elasticity. Two steps of the trials' 2 ms (MuJoCo's stability floor; it clamps shorter time
+# constants to two steps) and impedance 0.99-0.999 keep the sinking to 1-3 mm.
+FLEX_CONTACT_SOLREF = (0.004, 1.0)
+FLEX_CONTACT_SOLIMP = (0.99, 0.999, 0.001, 0.5, 2.0)
+
+
 def _flex_contact(flex: mujoco.MjsFlex, friction: list[float]) -> None:
     flex.friction = friction
     flex.priority = 1
     flex.condim = 3
+    flex.solref = list(FLEX_CONTACT_SOLREF)
+    flex.solimp = list(FLEX_CONTACT_SOLIMP)
     flex.selfcollide = mujoco.mjtFlexSelf.mjFLEXSELF_NONE
 
 
