@@ -1,12 +1,12 @@
 """Platen crush test: press an object between the floor and a flat rigid plate, release it, and
 read its damage measure.
 
-This checks an object's damage model on its own, with a load the gripper cannot apply: once the
-fingers close onto their cut stops the grasp squeezes the library's balloon and box with 6-9 N
-at most (README, "Grasp benchmark"), far from their damage limits. Crushing them here shows that
-the criteria respond when the physics calls for it: a deep press bursts the balloon (membrane
-edge strain above its limit) and creases the card box (a permanent dent after spring-back), a
-shallow one does neither.
+This checks an object's damage model on its own, under a load that does not depend on how the
+fingers happen to wrap the object. It shows that the criteria respond when the physics calls for
+it: a deep press bursts the balloon (membrane edge strain above its limit) and creases the card
+box (a permanent dent after spring-back); a shallow one does neither. The gripper, closed to the
+servo's full travel, bursts the balloon too, but it cannot dent the box (README, "Grasp
+benchmark").
 
 The plate is a mocap body (it follows its commanded height whatever the reaction): 120 × 120 mm,
 10 mm thick, starting ``CRUSH_GAP`` above the object's nominal top. It moves down at ``speed`` to
