@@ -11,7 +11,7 @@ benchmark").
 The plate is a mocap body (it follows its commanded height whatever the reaction): 120 × 120 mm,
 10 mm thick, starting ``CRUSH_GAP`` above the object's nominal top. It moves down at ``speed`` to
 ``depth`` below that top, holds for ``hold_s``, and goes back up at the same speed. The measure
-is the one the grasp trials use (:func:`gripper.trial._damage_measure`): peak edge strain for
+is the one the grasp trials use (:func:`gripper.trial.damage_measure`): peak edge strain for
 the balloon and the bag, the permanent dent after :data:`gripper.trial.SPRINGBACK_S` of elastic
 spring-back for the paper box, and for rigid parts the peak plate force.
 
@@ -32,7 +32,7 @@ from gripper.model import build_scene_spec
 from gripper.objects import GraspObject, Placement, add_object, get_object
 from gripper.params import GripperParams
 from gripper.stability import check_stable
-from gripper.trial import _Probe, permanent_dent
+from gripper.trial import _Probe, damage_measure
 
 # Gap between the plate and the object's top at the start [m]: clears the 1 mm drop gap.
 CRUSH_GAP = 0.005
@@ -96,12 +96,7 @@ def crush_test(obj: str | GraspObject, depth: float, *, speed: float = 0.02,
             peak_force = max(peak_force, f)
             peak_strain = max(peak_strain, probe.edge_strain(d))
         check_stable(m, d, f"crush test of {obj.name}")
-    if obj.kind in ("balloon", "bag"):
-        measure = peak_strain
-    elif obj.kind == "paper_box":
-        measure = permanent_dent(m, d, probe)
-    else:
-        measure = peak_force
+    measure = damage_measure(m, d, obj, probe, peak_strain=peak_strain, peak_force=peak_force)
     return {"object": obj.name, "depth_m": float(depth), "damage_measure": float(measure),
             "damage_measure_name": obj.damage_measure, "damage_limit": obj.damage_limit,
             "damaged": bool(measure > obj.damage_limit), "peak_plate_force_N": float(peak_force)}

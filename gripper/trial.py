@@ -343,7 +343,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec) -> dict:
     check("shake")
     lift_height = float(probe.object_pos(d)[2] - start[2])
     slip = float(np.linalg.norm(rel(d) - rel_lift))
-    damage = _damage_measure(m, d, obj, probe, rec)
+    damage = damage_measure(m, d, obj, probe, peak_strain=rec.peak_strain, peak_force=rec.peak_total)
     if proto.release:
         _run_phase(stepper, probe, rec, ctrl(lambda t: close_cmd * np.maximum(0.0, 1 - t / proto.release_s), z_top),
                    proto.release_s, ch, "release")
@@ -358,12 +358,14 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec) -> dict:
     }
 
 
-def _damage_measure(m, d, obj, probe, rec) -> float:
+def damage_measure(m, d, obj, probe, *, peak_strain: float, peak_force: float) -> float:
+    """The object's damage measure: peak edge strain (balloon, bag), permanent dent after
+    spring-back (paper box, from the state in ``d``), else the peak contact force [N]."""
     if obj.kind in ("balloon", "bag"):
-        return rec.peak_strain
+        return peak_strain
     if obj.kind == "paper_box":
         return permanent_dent(m, d, probe)
-    return rec.peak_total
+    return peak_force
 
 
 def permanent_dent(m: mujoco.MjModel, d: mujoco.MjData, probe: _Probe) -> float:
