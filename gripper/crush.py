@@ -5,8 +5,7 @@ This checks an object's damage model on its own, under a load that does not depe
 fingers happen to wrap the object. It shows that the criteria respond when the physics calls for
 it: a deep press bursts the balloon (membrane edge strain above its limit) and creases the card
 box (a permanent dent after spring-back); a shallow one does neither. The gripper, closed to the
-servo's full travel, bursts the balloon too, but it cannot dent the box (README, "Grasp
-benchmark").
+servo's full travel, bursts the balloon and dents the box too (README, "Grasp benchmark").
 
 The plate is a mocap body (it follows its commanded height whatever the reaction): 120 × 120 mm,
 10 mm thick, starting ``CRUSH_GAP`` above the object's nominal top. It moves down at ``speed`` to

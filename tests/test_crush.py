@@ -32,11 +32,12 @@ def test_balloon_bursts_when_flattened_not_when_pressed_lightly():
 
 
 def test_paper_box_keeps_a_dent_when_crushed():
-    """Crushed 15 mm, the card creases and keeps a dent deeper than 2 mm after spring-back;
-    pressed 2 mm it springs back."""
-    light = crush_test("paper_box", 0.002)
+    """Pressed 0.1 mm (wall strain 0.17 %, a third of the card's 0.5 % yield strain) the box
+    springs back; crushed 15 mm the card yields and keeps a dent deeper than 2 mm."""
+    light = crush_test("paper_box", 0.0001)
     hard = crush_test("paper_box", 0.015)
-    assert not light["damaged"]
+    assert light["peak_plate_force_N"] > 10.0  # the plate did load the box
+    assert not light["damaged"] and light["damage_measure"] < 0.05e-3
     assert hard["damaged"] and hard["damage_measure"] > 0.002
 
 

@@ -74,3 +74,19 @@ def test_chunking_does_not_change_physics():
     b = run_trial("block", seed=0, index=3, protocol=GraspProtocol(chunk_steps=7))
     for key in ("lift_height_m", "slip_m", "max_slip_m", "peak_cable_tension_N"):
         assert a[key] == b[key], key
+
+
+@pytest.mark.parametrize("name, hard_scale", [("balloon", 2.5), ("paper_box", 2.3)])
+def test_closing_much_harder_damages_deformable_objects(name, hard_scale):
+    """Damage is physics, not a label: the default closing command leaves the balloon whole and
+    the box undented, while the servo driven to its full travel (scale 2.5 or 2.3 of the
+    default, stall tension on the cables) bursts the balloon (membrane strain above 0.25) and
+    dents the box (permanent dent beyond 2 mm after spring-back)."""
+    obj = get_object(name)
+    soft = run_trial(name, seed=0, index=0)
+    hard = run_trial(name, seed=0, index=0, protocol=GraspProtocol(close_command_scale=hard_scale))
+    assert soft["status"] == hard["status"] == "ok"
+    assert soft["success"] and not soft["damaged"]
+    assert soft["damage_measure"] < 0.5 * obj.damage_limit
+    assert hard["damaged"] and hard["failed_phase"] == "damage"
+    assert hard["damage_measure"] > obj.damage_limit
