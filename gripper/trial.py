@@ -193,17 +193,24 @@ class _Stepper:
         self.m, self.d = m, d
         self.roll = rollout.Rollout(nthread=0)
         self.state0 = np.empty((1, mujoco.mj_stateSize(m, STATE_SPEC)))
+        mujoco.mj_getState(m, d, self.state0[0], STATE_SPEC)
         self.warm0 = np.empty((1, m.nv))
         self._out: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self.last_states = self.state0
 
     def step(self, u: np.ndarray) -> np.ndarray:
-        """Apply the controls ``u`` (n, nu) for n steps; return the sensor data (n, nsensordata)."""
+        """Apply the controls ``u`` (n, nu) for n steps; return the sensor data (n, nsensordata).
+
+        ``d`` must not be changed between calls: each chunk starts from the previous chunk's
+        last state row (the same numbers ``mj_getState`` would read from ``d``).
+        """
         n = len(u)
         if n not in self._out:
             self._out[n] = (np.empty((1, n, self.state0.shape[1])), np.empty((1, n, self.m.nsensordata)))
         state, sens = self._out[n]
+        if self.last_states is not self.state0:
+            self.state0[0] = self.last_states[-1]
         self.last_states = state[0]
-        mujoco.mj_getState(self.m, self.d, self.state0[0], STATE_SPEC)
         # the solver's warm start is not part of the physics state: pass it on so that the
         # result does not depend on where chunks are cut (bitwise equal to plain mj_step)
         self.warm0[0] = self.d.qacc_warmstart
@@ -211,6 +218,10 @@ class _Stepper:
                           control_spec=CTRL_SPEC, skip_checks=True, nstep=n,
                           initial_warmstart=self.warm0, state=state, sensordata=sens)
         return sens[0]
+
+    def finite(self) -> bool:
+        """Whether the last chunk's final state (time, qpos, qvel, act, ...) is finite."""
+        return bool(np.isfinite(self.last_states[-1]).all())
 
     def close(self) -> None:
         self.roll.close()
@@ -226,7 +237,9 @@ def _run_phase(stepper, probe, rec, ctrl_fn, duration, chunk, what, on_chunk=Non
         t = (done + np.arange(n)) * m.opt.timestep
         sens = stepper.step(ctrl_fn(t))
         done += n
-        check_stable(m, d, what)
+        if not stepper.finite() or d.warning.number.any():
+            check_stable(m, d, what)  # raises, naming the warnings
+            raise SimulationUnstable(f"{what}: non-finite state at t = {d.time:.4f} s")
         rec.add(sens, d)
         if rec.frame_sink is not None:
             rec.frame_sink.add(what, stepper.last_states, sens)

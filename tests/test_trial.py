@@ -1,5 +1,6 @@
 """One grasp trial on the rigid block: success, determinism, error handling, pull-out."""
 
+import mujoco
 import pytest
 
 import gripper.trial as trial_mod
@@ -47,18 +48,39 @@ def test_negative_noise_is_refused():
 
 
 def test_unstable_trial_is_an_error_not_a_failure(monkeypatch):
+    """A state that turns non-finite mid-trial (here injected into the 30th chunk's result) is
+    recorded as an error, neither a success nor a failure."""
     calls = {"n": 0}
-    real = trial_mod.check_stable
+    real = trial_mod._Stepper.step
 
-    def flaky(m, d, what):
+    def diverging(self, u):
+        sens = real(self, u)
         calls["n"] += 1
         if calls["n"] == 30:
-            raise SimulationUnstable(f"{what}: injected")
-        real(m, d, what)
+            self.last_states[-1, 1] = float("nan")  # first qpos entry of the chunk's last state
+        return sens
 
-    monkeypatch.setattr(trial_mod, "check_stable", flaky)
+    monkeypatch.setattr(trial_mod._Stepper, "step", diverging)
     rec = run_trial("block", seed=0, index=0)
-    assert rec["status"] == "error" and rec["success"] is None and "injected" in rec["error"]
+    assert rec["status"] == "error" and rec["success"] is None
+    assert "non-finite" in rec["error"], rec["error"]
+
+
+def test_warning_makes_the_trial_an_error(monkeypatch):
+    """A MuJoCo warning raised during a chunk turns the trial into an error naming it."""
+    calls = {"n": 0}
+    real = trial_mod._Stepper.step
+
+    def warning(self, u):
+        sens = real(self, u)
+        calls["n"] += 1
+        if calls["n"] == 30:
+            self.d.warning[int(mujoco.mjtWarning.mjWARN_BADQACC)].number += 1
+        return sens
+
+    monkeypatch.setattr(trial_mod._Stepper, "step", warning)
+    rec = run_trial("block", seed=0, index=0)
+    assert rec["status"] == "error" and "mjWARN_BADQACC" in rec["error"], rec["error"]
 
 
 def test_pullout_holding_force_exceeds_weight():
