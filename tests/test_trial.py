@@ -6,7 +6,6 @@ import pytest
 import gripper.trial as trial_mod
 from gripper.objects import get_object
 from gripper.protocol import GraspProtocol, TrialNoise
-from gripper.stability import SimulationUnstable
 from gripper.trial import run_pullout, run_trial, sample_placement
 
 VOLATILE = ("wall_time_s",)
