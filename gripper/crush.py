@@ -27,6 +27,7 @@ import math
 import mujoco
 import numpy as np
 
+from gripper.canonical import apply_canonical_constants
 from gripper.model import build_scene_spec
 from gripper.objects import GraspObject, Placement, add_object, get_object
 from gripper.params import GripperParams
@@ -72,6 +73,7 @@ def crush_test(obj: str | GraspObject, depth: float, *, speed: float = 0.02,
     plate.add_geom(name="platen_geom", type=mujoco.mjtGeom.mjGEOM_BOX, size=list(PLATE_HALF),
                    friction=[0.5, 0.005, 1e-4], rgba=[0.6, 0.6, 0.6, 0.5])
     m = spec.compile()
+    apply_canonical_constants(m, obj, Placement())
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
     probe = _Probe(m, obj, p.layout.n_fingers)

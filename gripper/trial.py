@@ -28,6 +28,7 @@ import numpy as np
 from mujoco import rollout
 
 import gripper
+from gripper.canonical import apply_canonical_constants
 from gripper.model import build_scene_spec, finger_name
 from gripper.objects import CONTENTS_BODY, OBJECT_BODY, GraspObject, Placement, add_object, get_object
 from gripper.params import GripperParams
@@ -69,7 +70,9 @@ def build_grasp_scene(p: GripperParams, obj: GraspObject, place: Placement) -> m
     spec = build_scene_spec(p, with_object=False)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
     add_object(spec, obj, place)
-    return spec.compile()
+    m = spec.compile()
+    apply_canonical_constants(m, obj, place)  # same numbers in every process (gripper.canonical)
+    return m
 
 
 @dataclass
