@@ -26,6 +26,7 @@ Example:
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -59,10 +60,16 @@ def canonical_flex_constants(obj: GraspObject) -> dict[str, np.ndarray]:
     ``inertia`` [kg·m²] of ``obj`` at unit mass scale (cached per process)."""
     key = json.dumps(obj.to_dict(), sort_keys=True, default=str)
     if key not in _CACHE:
+        # a fixed string-hash seed: the child's start-up (and so its allocations) never varies
+        env = {**os.environ, "PYTHONHASHSEED": "0"}
         with tempfile.TemporaryDirectory() as tmp:
             path = Path(tmp) / "consts.npz"
-            subprocess.run([sys.executable, "-m", "gripper.canonical", key, str(path)], check=True,
-                           capture_output=True, timeout=300)
+            done = subprocess.run([sys.executable, "-m", "gripper.canonical", key, str(path)],
+                                  capture_output=True, text=True, timeout=300, env=env)
+            if done.returncode != 0:
+                tail = (done.stderr.strip().splitlines() or ["no output"])[-1]
+                raise RuntimeError(f"canonical compile of {obj.name} failed in a child process "
+                                   f"({sys.executable} -m gripper.canonical): {tail}")
             with np.load(path) as z:
                 _CACHE[key] = {k: z[k].copy() for k in z.files}
     return _CACHE[key]

@@ -4,7 +4,9 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 
+import gripper.canonical as canonical
 from gripper.objects import Placement, get_object
 from gripper.params import GripperParams
 from gripper.trial import build_grasp_scene
@@ -40,3 +42,14 @@ def test_mass_scale_still_scales_the_balloon():
     nodes = [b for b in range(base.nbody) if base.body(b).name.startswith("object")]
     assert np.allclose(heavy.body_mass[nodes], 1.2 * base.body_mass[nodes], rtol=1e-12)
     assert abs(heavy.body_mass[nodes].sum() - 1.2 * get_object("balloon").mass) < 1e-9
+
+
+def test_failed_canonical_compile_is_one_clear_error(monkeypatch):
+
+    def failing(*a, **k):
+        return subprocess.CompletedProcess(a, 1, "", "Traceback ...\nImportError: no gripper here\n")
+
+    monkeypatch.setattr(canonical, "_CACHE", {})
+    monkeypatch.setattr(canonical.subprocess, "run", failing)
+    with pytest.raises(RuntimeError, match="canonical compile of balloon failed.*no gripper here"):
+        canonical.canonical_flex_constants(get_object("balloon"))
