@@ -113,6 +113,7 @@ class _Probe:
             mujoco.mj_flex(m, d0)
             self.rest_verts = d0.flexvert_xpos[self.vert].copy()
             self.edge_length0 = self._edge_lengths(self.rest_verts)
+            self._vertex_map(m, d0)
         if self.obj.kind == "bag":
             self.body = m.body(CONTENTS_BODY).id
         elif not self.obj.is_flex:
@@ -149,6 +150,45 @@ class _Probe:
             np.add.at(out, fing[use], d.efc_force[adr[use]])
         return out
 
+    def _vertex_map(self, m: mujoco.MjModel, d0: mujoco.MjData) -> None:
+        """The flex's vertex positions as a linear map of its nodes' slide-joint coordinates,
+        x = x0 + J (q - q0), so that the edge strain can be read at every step of a chunk from
+        the rollout's states. J is probed column by column (exact: slide joints, and
+        interpolation weights that are linear in the nodes)."""
+        f = self.flex
+        nodes = (m.flex_nodebodyid[m.flex_nodeadr[f]:m.flex_nodeadr[f] + m.flex_nodenum[f]]
+                 if m.flex_interp[f] else m.flex_vertbodyid[self.vert])
+        joints = [j for b in sorted({int(b) for b in nodes})
+                  for j in range(m.body_jntadr[b], m.body_jntadr[b] + m.body_jntnum[b])]
+        if not joints or any(m.jnt_type[j] != mujoco.mjtJoint.mjJNT_SLIDE for j in joints):
+            self.q_adr = None  # not a linear map: strain only at chunk ends
+            return
+        self.q_adr = m.jnt_qposadr[joints]
+        self.q0 = d0.qpos[self.q_adr].copy()
+        cols = []
+        for k in self.q_adr:
+            d0.qpos[k] += 1.0e-3
+            mujoco.mj_kinematics(m, d0)
+            mujoco.mj_flex(m, d0)
+            cols.append(((d0.flexvert_xpos[self.vert] - self.rest_verts) / 1.0e-3).ravel())
+            d0.qpos[k] -= 1.0e-3
+        jac = np.array(cols).T
+        jac[np.abs(jac) < 1e-9] = 0.0
+        from scipy.sparse import csr_matrix
+        self.jac = csr_matrix(jac)
+        # state rows start with the time, then qpos (mjSTATE_FULLPHYSICS)
+        self.q_col = mujoco.mj_stateSize(m, mujoco.mjtState.mjSTATE_TIME) + self.q_adr
+
+    def edge_strain_steps(self, states: np.ndarray) -> float:
+        """Largest tensile edge strain over the rollout ``states`` (n, nstate) [-]."""
+        if self.flex < 0:
+            return 0.0
+        dq = states[:, self.q_col] - self.q0
+        x = self.rest_verts.ravel() + (self.jac @ dq.T).T
+        x = x.reshape(len(states), -1, 3)
+        e = x[:, self.edge_verts[:, 0]] - x[:, self.edge_verts[:, 1]]
+        return float(np.max(np.linalg.norm(e, axis=2) / self.edge_length0 - 1.0))
+
     def _edge_lengths(self, x: np.ndarray) -> np.ndarray:
         return np.linalg.norm(x[self.edge_verts[:, 0]] - x[self.edge_verts[:, 1]], axis=1)
 
@@ -176,12 +216,18 @@ class _Recorder:
         self.peak_strain = 0.0
         self.frame_sink = None  # optional: receives (phase, states, sensordata) of every chunk
 
-    def add(self, sensordata: np.ndarray, d: mujoco.MjData) -> None:
+    def add(self, sensordata: np.ndarray, d: mujoco.MjData, states: np.ndarray | None = None) -> None:
+        """Fold in one chunk: ``sensordata`` and ``states`` (the rollout's rows, one per step) and
+        ``d`` at the chunk's end. Contact forces are read at the chunk's end only; flex strain
+        at every step where ``states`` is given (see :meth:`_Probe.edge_strain_steps`)."""
         per_finger = self.probe.finger_forces(d)
         self.peak_finger = np.maximum(self.peak_finger, per_finger)
         self.peak_total = max(self.peak_total, float(per_finger.sum()))
         self.peak_tension = max(self.peak_tension, float(sensordata[:, self.probe.tension_adr].max()))
-        self.peak_strain = max(self.peak_strain, self.probe.edge_strain(d))
+        if states is not None and self.probe.flex >= 0 and self.probe.q_adr is not None:
+            self.peak_strain = max(self.peak_strain, self.probe.edge_strain_steps(states))
+        else:
+            self.peak_strain = max(self.peak_strain, self.probe.edge_strain(d))
 
 
 class _Stepper:
@@ -243,7 +289,7 @@ def _run_phase(stepper, probe, rec, ctrl_fn, duration, chunk, what, on_chunk=Non
         if not stepper.finite() or d.warning.number.any():
             check_stable(m, d, what)  # raises, naming the warnings
             raise SimulationUnstable(f"{what}: non-finite state at t = {d.time:.4f} s")
-        rec.add(sens, d)
+        rec.add(sens, d, stepper.last_states)
         if rec.frame_sink is not None:
             rec.frame_sink.add(what, stepper.last_states, sens)
         if on_chunk is not None and on_chunk(d):

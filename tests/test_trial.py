@@ -1,10 +1,12 @@
 """One grasp trial on the rigid block: success, determinism, error handling, pull-out."""
 
 import mujoco
+import numpy as np
 import pytest
 
 import gripper.trial as trial_mod
 from gripper.objects import get_object
+from gripper.params import GripperParams
 from gripper.protocol import GraspProtocol, TrialNoise
 from gripper.trial import run_pullout, run_trial, sample_placement
 
@@ -111,3 +113,26 @@ def test_closing_much_harder_damages_deformable_objects(name, hard_scale):
     assert soft["damage_measure"] < 0.5 * obj.damage_limit
     assert hard["damaged"] and hard["failed_phase"] == "damage"
     assert hard["damage_measure"] > obj.damage_limit
+
+
+@pytest.mark.parametrize("name", ["balloon", "bag"])
+def test_flex_strain_is_read_at_every_step(name):
+    """The trial's flex strain comes from every step's state (rollout rows), not only from the
+    chunk's end: the per-step reading of the last row equals a fresh evaluation of that state,
+    and the chunk's maximum is at least its last value."""
+    obj = get_object(name)
+    p = GripperParams().replace(sim=GripperParams().sim.replace(timestep=GraspProtocol().timestep))
+    m = trial_mod.build_grasp_scene(p, obj, sample_placement(obj, TrialNoise(), 0, 3))
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    probe = trial_mod._Probe(m, obj, p.layout.n_fingers)
+    stepper = trial_mod._Stepper(m, d)
+    u = np.zeros((300, m.nu))
+    u[:, probe.servo] = 2.0  # close on the object
+    stepper.step(u)
+    fresh = mujoco.MjData(m)
+    mujoco.mj_setState(m, fresh, stepper.last_states[-1], trial_mod.STATE_SPEC)
+    mujoco.mj_forward(m, fresh)
+    last = probe.edge_strain_steps(stepper.last_states[-1:])
+    assert last == pytest.approx(probe.edge_strain(fresh), abs=1e-9)
+    assert probe.edge_strain_steps(stepper.last_states) >= last
