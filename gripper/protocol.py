@@ -48,13 +48,13 @@ class GraspProtocol:
         success_height: minimum object rise above its start at the end [m].
         max_slip: maximum object displacement relative to the palm since the end of lift [m].
         chunk_steps: steps per rollout chunk, between checks of slip, damage and stability, and
-            the sampling of contact forces and flex strain. 20 steps (40 ms at the 2 ms step):
+            the sampling of contact forces (flex strain is read at every step from the
+            chunk's states). 20 steps (40 ms at the 2 ms step):
             the fastest commanded motion, the 2 Hz shake, is sampled 12 times a period. Each
             chunk costs about 40 µs in the rollout call and 30 µs of Python checks; at 10 steps
             that was 15 % over plain ``mj_step`` on a short cylinder trial, at 20 about half
-            (scripts/bench_trial.py). The peaks are samples: on four trials checked they moved
-            by < 0.1 % between 10 and 20 steps, but one bag trial's film strain read 0.115 at
-            10 and 0.058 at 20 (a spike shorter than a chunk; README, "Grasp benchmark").
+            (scripts/bench_trial.py). Force peaks are samples: read per step they were up to
+            7.3 N higher on 100 rigid trials (README, "Grasp benchmark").
         timestep: simulation step of grasp trials [s]; replaces ``params.sim.timestep`` (the
             hinge-limit and cable time constants scale with it). 2 ms: the ``discrete``
             integrator holds every library object at 2 ms with the same outcome as at 1 ms
