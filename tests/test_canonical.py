@@ -1,5 +1,6 @@
 """Balloon models are the same numbers in every process (see gripper.canonical)."""
 
+import json
 import subprocess
 import sys
 
@@ -9,7 +10,7 @@ import pytest
 import gripper.canonical as canonical
 from gripper.objects import Placement, get_object
 from gripper.params import GripperParams
-from gripper.trial import build_grasp_scene
+from gripper.trial import build_grasp_scene, run_trial
 
 CHILD = """
 import sys, numpy as np
@@ -53,3 +54,21 @@ def test_failed_canonical_compile_is_one_clear_error(monkeypatch):
     monkeypatch.setattr(canonical.subprocess, "run", failing)
     with pytest.raises(RuntimeError, match="canonical compile of balloon failed.*no gripper here"):
         canonical.canonical_flex_constants(get_object("balloon"))
+
+
+TRIAL_CHILD = """
+import json, sys
+from gripper.trial import run_trial
+rec = run_trial("balloon", seed=0, index=20)
+json.dump({k: v for k, v in rec.items() if k != "wall_time_s"}, open(sys.argv[1], "w"))
+"""
+
+
+def test_balloon_trial_is_the_same_in_a_fresh_process(tmp_path):
+    """The whole record of a balloon trial, here after other scenes, equals the record of the
+    same trial in a fresh interpreter (before the canonical constants it did not)."""
+    run_trial("balloon", seed=0, index=0)
+    here = {k: v for k, v in run_trial("balloon", seed=0, index=20).items() if k != "wall_time_s"}
+    path = tmp_path / "fresh.json"
+    subprocess.run([sys.executable, "-c", TRIAL_CHILD, str(path)], check=True, timeout=300)
+    assert json.loads(json.dumps(here)) == json.loads(path.read_text())
