@@ -26,7 +26,7 @@ from gripper.model import finger_name
 from gripper.objects import GraspObject, Placement, get_object
 from gripper.params import GripperParams
 from gripper.protocol import TrialNoise
-from gripper.trial import STATE_SPEC, _Probe, build_grasp_scene, sample_placement
+from gripper.trial import STATE_SPEC, STRAIN_DAMAGE_KINDS, _Probe, build_grasp_scene, sample_placement
 
 CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
 
@@ -319,7 +319,7 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     pads = sens[s.pads].reshape(cfg.n_fingers, -1).sum(axis=1)
     touching = float(np.count_nonzero(pads > 0.05)) / cfg.n_fingers  # 0.05 N: above sensor noise
     # damage: the object's own criterion where it can be read at every step
-    if s.obj.kind in ("balloon", "bag"):
+    if s.obj.kind in STRAIN_DAMAGE_KINDS:
         ep.peak_strain = max(ep.peak_strain, s.probe.edge_strain(d))
         measure = ep.peak_strain
     elif s.obj.kind == "paper_box":

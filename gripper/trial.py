@@ -37,6 +37,8 @@ from gripper.stability import SimulationUnstable, check_stable
 
 STATE_SPEC = mujoco.mjtState.mjSTATE_FULLPHYSICS
 CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
+# Objects whose damage measure is the peak edge strain of their flex (burst, tear).
+STRAIN_DAMAGE_KINDS = ("balloon", "bag")
 
 # Elastic spring-back before measuring a permanent dent: contacts and gravity off, this long [s];
 # the paper box's slowest wall mode (≈ 30 Hz) and its Rayleigh damping settle well within it.
@@ -113,6 +115,8 @@ class _Probe:
             mujoco.mj_flex(m, d0)
             self.rest_verts = d0.flexvert_xpos[self.vert].copy()
             self.edge_length0 = self._edge_lengths(self.rest_verts)
+        self.q_adr = None  # no per-step strain map (set for objects whose damage is a strain)
+        if self.flex >= 0 and self.obj.kind in STRAIN_DAMAGE_KINDS:
             self._vertex_map(m, d0)
         if self.obj.kind == "bag":
             self.body = m.body(CONTENTS_BODY).id
@@ -161,8 +165,7 @@ class _Probe:
         joints = [j for b in sorted({int(b) for b in nodes})
                   for j in range(m.body_jntadr[b], m.body_jntadr[b] + m.body_jntnum[b])]
         if not joints or any(m.jnt_type[j] != mujoco.mjtJoint.mjJNT_SLIDE for j in joints):
-            self.q_adr = None  # not a linear map: strain only at chunk ends
-            return
+            return  # not a linear map: strain only at chunk ends
         self.q_adr = m.jnt_qposadr[joints]
         self.q0 = d0.qpos[self.q_adr].copy()
         cols = []
@@ -181,8 +184,6 @@ class _Probe:
 
     def edge_strain_steps(self, states: np.ndarray) -> float:
         """Largest tensile edge strain over the rollout ``states`` (n, nstate) [-]."""
-        if self.flex < 0:
-            return 0.0
         dq = states[:, self.q_col] - self.q0
         x = self.rest_verts.ravel() + (self.jac @ dq.T).T
         x = x.reshape(len(states), -1, 3)
@@ -224,7 +225,9 @@ class _Recorder:
         self.peak_finger = np.maximum(self.peak_finger, per_finger)
         self.peak_total = max(self.peak_total, float(per_finger.sum()))
         self.peak_tension = max(self.peak_tension, float(sensordata[:, self.probe.tension_adr].max()))
-        if states is not None and self.probe.flex >= 0 and self.probe.q_adr is not None:
+        if self.probe.obj.kind not in STRAIN_DAMAGE_KINDS:
+            return
+        if states is not None and self.probe.q_adr is not None:
             self.peak_strain = max(self.peak_strain, self.probe.edge_strain_steps(states))
         else:
             self.peak_strain = max(self.peak_strain, self.probe.edge_strain(d))
@@ -257,8 +260,6 @@ class _Stepper:
         if n not in self._out:
             self._out[n] = (np.empty((1, n, self.state0.shape[1])), np.empty((1, n, self.m.nsensordata)))
         state, sens = self._out[n]
-        if self.last_states is not self.state0:
-            self.state0[0] = self.last_states[-1]
         self.last_states = state[0]
         # the solver's warm start is not part of the physics state: pass it on so that the
         # result does not depend on where chunks are cut (bitwise equal to plain mj_step)
@@ -266,6 +267,7 @@ class _Stepper:
         self.roll.rollout([self.m], [self.d], self.state0, np.ascontiguousarray(u[None]),
                           control_spec=CTRL_SPEC, skip_checks=True, nstep=n,
                           initial_warmstart=self.warm0, state=state, sensordata=sens)
+        self.state0[0] = state[0, -1]  # the next chunk's start
         return sens[0]
 
     def finite(self) -> bool:
@@ -423,7 +425,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec) -> dict:
 def damage_measure(m, d, obj, probe, *, peak_strain: float, peak_force: float) -> float:
     """The object's damage measure: peak edge strain (balloon, bag), permanent dent after
     spring-back (paper box, from the state in ``d``), else the peak contact force [N]."""
-    if obj.kind in ("balloon", "bag"):
+    if obj.kind in STRAIN_DAMAGE_KINDS:
         return peak_strain
     if obj.kind == "paper_box":
         return permanent_dent(m, d, probe)

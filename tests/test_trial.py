@@ -48,20 +48,28 @@ def test_negative_noise_is_refused():
         TrialNoise(xy=-0.001).validate()
 
 
-def test_unstable_trial_is_an_error_not_a_failure(monkeypatch):
-    """A state that turns non-finite mid-trial (here injected into the 30th chunk's result) is
-    recorded as an error, neither a success nor a failure."""
+def _tamper_with_chunk(monkeypatch, n, tamper):
+    """Call ``tamper(stepper)`` right after the ``n``-th rollout chunk of every trial."""
     calls = {"n": 0}
     real = trial_mod._Stepper.step
 
-    def diverging(self, u):
+    def step(self, u):
         sens = real(self, u)
         calls["n"] += 1
-        if calls["n"] == 30:
-            self.last_states[-1, 1] = float("nan")  # first qpos entry of the chunk's last state
+        if calls["n"] == n:
+            tamper(self)
         return sens
 
-    monkeypatch.setattr(trial_mod._Stepper, "step", diverging)
+    monkeypatch.setattr(trial_mod._Stepper, "step", step)
+
+
+def test_unstable_trial_is_an_error_not_a_failure(monkeypatch):
+    """A state that turns non-finite mid-trial (here injected into the 30th chunk's result) is
+    recorded as an error, neither a success nor a failure."""
+    def nan(stepper):
+        stepper.last_states[-1, 1] = float("nan")  # first qpos entry of the chunk's last state
+
+    _tamper_with_chunk(monkeypatch, 30, nan)
     rec = run_trial("block", seed=0, index=0)
     assert rec["status"] == "error" and rec["success"] is None
     assert "non-finite" in rec["error"], rec["error"]
@@ -69,17 +77,10 @@ def test_unstable_trial_is_an_error_not_a_failure(monkeypatch):
 
 def test_warning_makes_the_trial_an_error(monkeypatch):
     """A MuJoCo warning raised during a chunk turns the trial into an error naming it."""
-    calls = {"n": 0}
-    real = trial_mod._Stepper.step
+    def warn(stepper):
+        stepper.d.warning[int(mujoco.mjtWarning.mjWARN_BADQACC)].number += 1
 
-    def warning(self, u):
-        sens = real(self, u)
-        calls["n"] += 1
-        if calls["n"] == 30:
-            self.d.warning[int(mujoco.mjtWarning.mjWARN_BADQACC)].number += 1
-        return sens
-
-    monkeypatch.setattr(trial_mod._Stepper, "step", warning)
+    _tamper_with_chunk(monkeypatch, 30, warn)
     rec = run_trial("block", seed=0, index=0)
     assert rec["status"] == "error" and "mjWARN_BADQACC" in rec["error"], rec["error"]
 
