@@ -43,6 +43,7 @@ XY_ACTION_RANGE = 0.020
 # [m] (a gripper of 57 mm radius cannot reach it) or below the floor by 20 mm (fell through).
 WORKSPACE_RADIUS = 0.15
 WORKSPACE_FLOOR = -0.020
+IDENTITY_QUAT = np.array([1.0, 0.0, 0.0, 0.0])  # orientation reported for a flex object
 
 DEFAULT_REWARD_WEIGHTS = {
     "reach": 1.0,     # per metre of distance between the grasp point and the object
@@ -180,6 +181,10 @@ class Scene:
         self.nominal_inertia = m.body_inertia.copy()
         self.nominal_friction = m.geom_friction.copy()
         self.nstate = mujoco.mj_stateSize(m, STATE_SPEC)
+        self._build_control_map()
+        # observation gather: palm x/y joints (or none), object body (or the flex centroid)
+        self.palm_xy_q = np.array([self.lift_q[a] for a in ("lift_x", "lift_y") if a in self.lift_q], dtype=int)
+        self.palm_xy_slot = np.array([i for i, a in enumerate(("lift_x", "lift_y")) if a in self.lift_q], dtype=int)
 
     def signature(self) -> tuple:
         m = self.model
@@ -199,17 +204,28 @@ class Scene:
         return float(np.clip(2.0 * angle / self.servo_max - 1.0, -1.0, 1.0))
 
     def controls(self, action: np.ndarray) -> np.ndarray:
-        """Map an action in [-1, 1] to the actuator controls (nu,)."""
-        a = np.clip(action, -1.0, 1.0)
-        u = np.zeros(self.model.nu)
-        nf = self.cfg.n_fingers
-        k = nf if self.cfg.action_mode == "fingers" else 1
-        u[self.servo] = 0.5 * (a[:k] + 1.0) * self.servo_max
-        u[self.act_lift["lift_z"]] = self.z_min + 0.5 * (a[k] + 1.0) * (self.z_max - self.z_min)
+        """Map an action in [-1, 1] to the actuator controls (nu,): each actuator's control is
+        ``offset + scale * action[source]`` (servos: [0, full travel]; lift z: [z_min, z_max];
+        x/y: ±XY_ACTION_RANGE; actuators without an action stay at 0)."""
+        return self._ctrl_offset + self._ctrl_scale * np.clip(action, -1.0, 1.0)[self._ctrl_source]
+
+    def _build_control_map(self) -> None:
+        nu = self.model.nu
+        self._ctrl_source = np.zeros(nu, dtype=int)
+        self._ctrl_offset = np.zeros(nu)
+        self._ctrl_scale = np.zeros(nu)
+        fingers = self.cfg.action_mode == "fingers"
+        k = self.cfg.n_fingers if fingers else 1
+        self._ctrl_source[self.servo] = np.arange(k) if fingers else 0  # synergy: one command
+        self._ctrl_offset[self.servo] = self._ctrl_scale[self.servo] = 0.5 * self.servo_max
+        z = self.act_lift["lift_z"]
+        self._ctrl_source[z] = k
+        self._ctrl_offset[z] = 0.5 * (self.z_min + self.z_max)
+        self._ctrl_scale[z] = 0.5 * (self.z_max - self.z_min)
         if self.cfg.xy_actions:
-            u[self.act_lift["lift_x"]] = XY_ACTION_RANGE * a[k + 1]
-            u[self.act_lift["lift_y"]] = XY_ACTION_RANGE * a[k + 2]
-        return u
+            for j, name in enumerate(("lift_x", "lift_y")):
+                self._ctrl_source[self.act_lift[name]] = k + 1 + j
+                self._ctrl_scale[self.act_lift[name]] = XY_ACTION_RANGE
 
 
 class SceneSet:
@@ -287,23 +303,22 @@ def load_state(ep: EpisodeState, state: np.ndarray, ctrl: np.ndarray) -> None:
     mujoco.mj_setState(m, d, state, STATE_SPEC)
     d.ctrl[:] = ctrl
     mujoco.mj_kinematics(m, d)
-    mujoco.mj_flex(m, d)
+    if m.nflex:
+        mujoco.mj_flex(m, d)
 
 
 def observe(ep: EpisodeState, sens: np.ndarray) -> np.ndarray:
     """The observation (float64) from the data's current state and the last sensor row."""
     s, d = ep.scene, ep.data
-    palm = np.array([d.qpos[s.lift_q["lift_x"]] if "lift_x" in s.lift_q else 0.0,
-                     d.qpos[s.lift_q["lift_y"]] if "lift_y" in s.lift_q else 0.0,
-                     s.home + d.qpos[s.lift_q["lift_z"]]])
+    q = d.qpos
+    palm = np.zeros(3)
+    palm[s.palm_xy_slot] = q[s.palm_xy_q]
+    palm[2] = s.home + q[s.lift_q["lift_z"]]
     pos = s.probe.object_pos(d) - palm
-    if s.probe.body >= 0:
-        quat = d.xquat[s.probe.body].copy()
-    else:
-        quat = np.array([1.0, 0.0, 0.0, 0.0])
-    reel = d.qpos[s.reel_q]
+    quat = d.xquat[s.probe.body] if s.probe.body >= 0 else IDENTITY_QUAT
+    reel = q[s.reel_q]
     return np.concatenate([
-        d.qpos[s.hinge_q], d.qvel[s.hinge_v], reel, sens[s.tension], reel / s.spool, palm[2:3], pos, quat,
+        q[s.hinge_q], d.qvel[s.hinge_v], reel, sens[s.tension], reel / s.spool, palm[2:3], pos, quat,
         sens[s.pads]])
 
 
