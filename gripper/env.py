@@ -202,6 +202,9 @@ class SoftGripperGraspEnv(gym.Env):
     ## Version history
 
     - v0: first version (mujoco 4, 2 ms physics step, hobby servo).
+    - v0, package 0.4.0: sparse constraint Jacobian and no constraint islands (the same problem,
+      other rounding), the bag's pack touches its film stiffly. Spaces, rewards and episode rules
+      are unchanged, but episodes are not bitwise those of 0.3.0 for the same seed.
 
     Example:
         >>> import gymnasium as gym
