@@ -93,7 +93,8 @@ class FitResult:
         damping: per-hinge damping [N·m·s/rad].
         rest_angle_deg: per-hinge rest angle [deg] (not fitted: 0, moulded straight).
         fitted: the hinge model's record at the fitted values.
-        metrics: fit quality (see :func:`fit_metrics`).
+        metrics: fit quality (see :func:`fit_metrics`), plus ``diverged_trial_points``: parameter
+            points of the search whose run diverged and was rejected.
         iterations: solver iterations.
         wall_time_s: fit wall time [s].
     """
@@ -153,6 +154,7 @@ class HingeSimulator:
         d = self.datas[0]
         mujoco.mj_forward(self.model, d)
         self.length0 = float(d.sensordata[-1])
+        self.diverged = 0  # parameter points whose run diverged (rejected by the search)
         self.state0 = np.empty(mujoco.mj_stateSize(self.model, mujoco.mjtState.mjSTATE_FULLPHYSICS))
         mujoco.mj_getState(self.model, d, self.state0, mujoco.mjtState.mjSTATE_FULLPHYSICS)
 
@@ -179,6 +181,7 @@ class HingeSimulator:
             # MuJoCo resets a diverging simulation to its initial state: the clock jumps back.
             if not np.isfinite(s).all() or np.any(np.diff(state[i][:, 0]) <= 0):
                 s = np.full_like(s, DIVERGED)  # a huge residual: the solver steps away
+                self.diverged += 1
             q = s[:, :nh]
             angles = np.degrees(np.hstack([np.zeros((len(s), 1)), np.cumsum(q, axis=1)]))
             tip = s[:, [nh, nh + 2]]
@@ -275,6 +278,9 @@ def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
     k, c = unpack(x)
     fitted = simulate_record(sim, k, c, record, timestep, static_only)
     metrics = fit_metrics(record, fitted, p, held)
+    # diverged trial points (each also printed a MuJoCo warning): a count, so that a user with
+    # wider bounds sees why the console filled with warnings while the fit still converged
+    metrics["diverged_trial_points"] = sim.diverged
     return FitResult(stiffness=k, damping=c, rest_angle_deg=np.zeros(nh), fitted=fitted,
                      metrics=metrics, iterations=len(trace), wall_time_s=wall, config=cfg)
 
