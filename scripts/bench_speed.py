@@ -19,18 +19,31 @@ from gripper.params import GripperParams
 from gripper.protocol import GraspProtocol
 
 
-def grasp_rollout(p: GripperParams, sim_time: float = 3.0, discrete: bool = False) -> float:
+def _scene(p: GripperParams, discrete: bool) -> mujoco.MjModel:
     spec = build_scene_spec(p)
     if discrete:  # as the grasp trials build it (gripper.trial.build_grasp_scene)
         spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
-    m = spec.compile()
+    return spec.compile()
+
+
+def _scripted_controls(p: GripperParams, m: mujoco.MjModel, sim_time: float) -> np.ndarray:
+    """Descend for 1 s, close the servos to 2 rad over 0.5 s, lift by 0.1 m at 2.2 s: (n, nu)."""
+    n = int(round(sim_time / m.opt.timestep))
+    t = np.arange(n) * m.opt.timestep
+    u = np.zeros((n, m.nu))
+    u[:, : p.layout.n_fingers] = (np.clip((t - 1.0) * 2.0, 0.0, 1.0) * 2.0)[:, None]
+    u[:, m.actuator("lift_z").id] = -0.12 * np.minimum(1.0, t) + np.where(t > 2.2, 0.1, 0.0)
+    return u
+
+
+def grasp_rollout(p: GripperParams, sim_time: float = 3.0, discrete: bool = False) -> float:
+    """Real-time factor of the scripted grasp with ``mj_step`` called from Python."""
+    m = _scene(p, discrete)
     d = mujoco.MjData(m)
-    lift = m.actuator("lift_z").id
+    u = _scripted_controls(p, m, sim_time)
     t0 = time.perf_counter()
-    while d.time < sim_time:
-        t = d.time
-        d.ctrl[: p.layout.n_fingers] = min(1.0, max(0.0, t - 1.0) * 2.0) * 2.0
-        d.ctrl[lift] = -0.12 * min(1.0, t) + (0.1 if t > 2.2 else 0.0)
+    for row in u:
+        d.ctrl[:] = row
         mujoco.mj_step(m, d)
     return sim_time / (time.perf_counter() - t0)
 
@@ -38,17 +51,9 @@ def grasp_rollout(p: GripperParams, sim_time: float = 3.0, discrete: bool = Fals
 def grasp_rollout_batch(p: GripperParams, sim_time: float = 3.0, discrete: bool = False) -> float:
     """The same scripted controls, stepped by ``mujoco.rollout`` on this thread in one call (the
     path the grasp trials and environments take): no Python between steps."""
-    spec = build_scene_spec(p)
-    if discrete:
-        spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
-    m = spec.compile()
+    m = _scene(p, discrete)
     d = mujoco.MjData(m)
-    lift = m.actuator("lift_z").id
-    n = int(round(sim_time / m.opt.timestep))
-    t = np.arange(n) * m.opt.timestep
-    u = np.zeros((1, n, m.nu))
-    u[0, :, : p.layout.n_fingers] = (np.clip((t - 1.0) * 2.0, 0.0, 1.0) * 2.0)[:, None]
-    u[0, :, lift] = -0.12 * np.minimum(1.0, t) + np.where(t > 2.2, 0.1, 0.0)
+    u = _scripted_controls(p, m, sim_time)[None]
     spec_full = mujoco.mjtState.mjSTATE_FULLPHYSICS
     s0 = np.empty((1, mujoco.mj_stateSize(m, spec_full)))
     mujoco.mj_getState(m, d, s0[0], spec_full)

@@ -116,24 +116,37 @@ def test_closing_much_harder_damages_deformable_objects(name, hard_scale):
     assert hard["damage_measure"] > obj.damage_limit
 
 
-@pytest.mark.parametrize("name", ["balloon", "bag"])
-def test_flex_strain_is_read_at_every_step(name):
-    """The trial's flex strain comes from every step's state (rollout rows), not only from the
-    chunk's end: the per-step reading of the last row equals a fresh evaluation of that state,
-    and the chunk's maximum is at least its last value."""
+def _close_on(name, *, at_grasp_height=False):
+    """Trial 3's scene of ``name``; the cables reeled in to 2 rad for 300 steps (0.6 s), the palm
+    at its start height or held at grasp height. Returns the model, the probe, the stepper and
+    a fresh ``MjData`` at the chunk's last state (after ``mj_forward``)."""
     obj = get_object(name)
-    p = GripperParams().replace(sim=GripperParams().sim.replace(timestep=GraspProtocol().timestep))
+    proto = GraspProtocol()
+    p = GripperParams().replace(sim=GripperParams().sim.replace(timestep=proto.timestep))
     m = trial_mod.build_grasp_scene(p, obj, sample_placement(obj, TrialNoise(), 0, 3))
     d = mujoco.MjData(m)
+    u = np.zeros((300, m.nu))
+    if at_grasp_height:
+        z = trial_mod.grasp_height(p, obj, proto) - p.lift.home_height
+        d.qpos[m.jnt_qposadr[m.joint("lift_z").id]] = z
+        u[:, m.actuator("lift_z").id] = z
     mujoco.mj_forward(m, d)
     probe = trial_mod._Probe(m, obj, p.layout.n_fingers)
     stepper = trial_mod._Stepper(m, d)
-    u = np.zeros((300, m.nu))
     u[:, probe.servo] = 2.0  # close on the object
     stepper.step(u)
     fresh = mujoco.MjData(m)
     mujoco.mj_setState(m, fresh, stepper.last_states[-1], trial_mod.STATE_SPEC)
     mujoco.mj_forward(m, fresh)
+    return m, probe, stepper, fresh
+
+
+@pytest.mark.parametrize("name", ["balloon", "bag"])
+def test_flex_strain_is_read_at_every_step(name):
+    """The trial's flex strain comes from every step's state (rollout rows), not only from the
+    chunk's end: the per-step reading of the last row equals a fresh evaluation of that state,
+    and the chunk's maximum is at least its last value."""
+    _, probe, stepper, fresh = _close_on(name)
     last = probe.edge_strain_steps(stepper.last_states[-1:])
     assert last == pytest.approx(probe.edge_strain(fresh), abs=1e-9)
     assert probe.edge_strain_steps(stepper.last_states) >= last
@@ -145,22 +158,7 @@ def test_bag_pack_does_not_sink_through_the_film():
     contact goes deeper than twice the film's collision radius (the film is 50 µm thick; its
     collision shell is 0.7 mm). With MuJoCo's default on the pack's side the pack sank 8-14 mm
     into the film here, and 10-17 mm in full trials."""
-    obj = get_object("bag")
-    p = GripperParams().replace(sim=GripperParams().sim.replace(timestep=GraspProtocol().timestep))
-    m = trial_mod.build_grasp_scene(p, obj, sample_placement(obj, TrialNoise(), 0, 3))
-    d = mujoco.MjData(m)
-    z = trial_mod.grasp_height(p, obj, GraspProtocol()) - p.lift.home_height
-    d.qpos[m.jnt_qposadr[m.joint("lift_z").id]] = z
-    mujoco.mj_forward(m, d)
-    probe = trial_mod._Probe(m, obj, p.layout.n_fingers)
-    stepper = trial_mod._Stepper(m, d)
-    u = np.zeros((300, m.nu))
-    u[:, probe.servo] = 2.0
-    u[:, m.actuator("lift_z").id] = z
-    stepper.step(u)
-    f = mujoco.MjData(m)
-    mujoco.mj_setState(m, f, stepper.last_states[-1], trial_mod.STATE_SPEC)
-    mujoco.mj_forward(m, f)
+    m, probe, _, f = _close_on("bag", at_grasp_height=True)
     assert (probe.finger_forces(f) > 5.0).all()  # the fingers do squeeze the pack
     pack = m.geom("object_contents_geom").id
     depth = [-f.contact[i].dist for i in range(f.ncon)
