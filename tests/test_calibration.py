@@ -7,6 +7,7 @@ import math
 import subprocess
 import sys
 
+import mujoco
 import numpy as np
 import pytest
 
@@ -28,13 +29,48 @@ def test_mesh_volume_is_the_moulded_body():
     gap = 2 * (G.hole_height - G.bridge_thickness) * tan  # cut width at the channel axis
     chan = channel_side(G) ** 2 * (G.length - (G.n_segments - 1) * gap)
     expected = G.length * G.width * G.height - cuts - chan
-    assert m.volume() == pytest.approx(expected, rel=1e-9)
+    assert m.symmetric  # the default meshes the half y >= 0
+    assert 2 * m.volume() == pytest.approx(expected, rel=1e-9)
+    assert finger_mesh(G, MeshResolution(symmetric=False)).volume() == pytest.approx(expected,
+                                                                                   rel=1e-9)
     a, b, c, d = (m.points[m.tets[:, i]] for i in range(4))
     vol = np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a) / 6
     assert (vol > 0).all()
     assert len(m.anchor_nodes) >= 4
     uniform = finger_mesh(G, MeshResolution(uniform=True))
-    assert uniform.volume() == pytest.approx(G.length * G.width * G.height, rel=1e-9)
+    assert 2 * uniform.volume() == pytest.approx(G.length * G.width * G.height, rel=1e-9)
+
+
+def test_symmetric_half_mesh():
+    """The default half mesh lies in y >= 0 with nodes on the plane; mirrored, it has one node
+    per node weight, and every cable group and the knot have nodes on the plane."""
+    half = finger_mesh(G)
+    assert (half.points[:, 1] >= -1e-12).all() and len(half.plane_nodes) > 0
+    mirrored = half.mirrored(np.arange(half.n_nodes), half.points)
+    assert len(mirrored) == half.node_weight.sum()
+    assert len(np.unique(np.round(mirrored, 12), axis=0)) == len(mirrored)  # no double nodes
+    for grp in (*half.channel_nodes, half.anchor_nodes):
+        assert np.isin(grp, half.plane_nodes).any()
+
+
+def test_symmetric_reference_matches_the_full_body():
+    """The half model (plane held by springs, half loads, mirrored measures) moves as the full
+    body: element angles and tip after 40 steps under the cable agree within 1 % of the tip
+    rotation. (The half has two cells across the channel's width where the full mesh has one,
+    which alone changes the static bend by 0.2 %.)"""
+    from gripper.calibration.reference import ReferenceConfig, ReferenceFinger
+
+    out = []
+    for mesh in (MeshResolution(), MeshResolution(symmetric=False)):
+        ref = ReferenceFinger(GripperParams(), ReferenceConfig(mesh=mesh))
+        for _ in range(40):
+            ref.apply_cable(0.25, ref.node_positions())
+            mujoco.mj_step(ref.model, ref.data)
+        out.append(ref.measure(ref.node_positions()))
+    (a_half, tip_half), (a_full, tip_full) = out
+    assert abs(a_full[-1]) > math.radians(2)  # the finger did bend
+    np.testing.assert_allclose(a_half, a_full, atol=0.01 * abs(a_full[-1]))
+    np.testing.assert_allclose(tip_half, tip_full, atol=0.01 * abs(a_full[-1]) * G.length)
 
 
 def test_finer_mesh_same_body():

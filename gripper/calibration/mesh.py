@@ -17,6 +17,12 @@ Choices (written down because no paper gives them):
   the default resolution) where the bridges bend, coarse in the stiff middle of the element.
 * **Resolution**: ``MeshResolution.scale`` multiplies every cell count; 1 is the default used
   for calibration.
+* **Symmetry**: the finger, its cable (on the centre line) and its bending are symmetric about the
+  bending plane y = 0, so by default only the half y >= 0 is meshed (``symmetric=True``); the
+  reference model holds the nodes on the plane in it and applies half of each load. This is the
+  half of a full mesh with twice the cells across the channel, at about 0.6x its nodes. Each
+  node's ``node_weight`` (2 off the plane, 1 on it) counts its mirror image wherever the whole
+  body is measured (centroids, best-fit rotations, load shares).
 * **Split**: linear tetrahedra lock in bending, and badly so when nearly incompressible
   (Poisson 0.48). On the uniform-beam check (:func:`~gripper.calibration.reference.beam_end_moment_check`,
   default counts) the six-tetrahedron Kuhn split reaches 0.53 of the closed-form curvature, the
@@ -57,6 +63,8 @@ class MeshResolution:
         above_hole: cells from the channel roof to the grasping face [-]. Default 1.
         side: cells across each side wall of the channel (y) [-]. Default 1.
         uniform: no channel and no cuts (a plain bar of the same size): the beam check.
+        symmetric: mesh only the half y >= 0 (see the module docstring). The half channel then
+            gets ``channel`` cells across its half width. Default True.
         split: tetrahedra per hexahedral cell: ``"centre24"`` (default: 24, around centre and
             face nodes; little locking), ``"centre12"`` (12, centre node only) or ``"kuhn6"``
             (6, no added nodes; locks, see the module docstring).
@@ -71,8 +79,12 @@ class MeshResolution:
     side: int = 1
     uniform: bool = False
     split: str = "centre24"
+    symmetric: bool = True
 
     def validate(self) -> MeshResolution:
+        for name in ("uniform", "symmetric"):
+            if not isinstance(getattr(self, name), bool):
+                raise ValueError(f"mesh.{name}: must be true or false, got {getattr(self, name)!r}")
         if self.split not in SPLITS:
             raise ValueError(f"mesh.split: must be one of {', '.join(SPLITS)}, got {self.split!r}")
         for name in ("scale", "along", "bridge", "below_hole", "channel", "above_hole", "side"):
@@ -93,6 +105,7 @@ class FingerMesh:
         channel_nodes: per element, the nodes on the cable channel's wall.
         anchor_nodes: nodes on the channel's rim at the tip's distal face (where the cable is
             knotted).
+        symmetric: only the half y >= 0 is meshed; the plane y = 0 is a symmetry plane.
     """
 
     points: np.ndarray
@@ -100,6 +113,32 @@ class FingerMesh:
     nodes_of_element: tuple[np.ndarray, ...]
     channel_nodes: tuple[np.ndarray, ...]
     anchor_nodes: np.ndarray
+    symmetric: bool = False
+
+    @property
+    def plane_nodes(self) -> np.ndarray:
+        """Indices of the nodes on the symmetry plane y = 0 (empty for a full mesh)."""
+        if not self.symmetric:
+            return np.empty(0, dtype=int)
+        return np.flatnonzero(np.abs(self.points[:, 1]) < 1e-12)
+
+    @property
+    def node_weight(self) -> np.ndarray:
+        """How many nodes of the whole body each node stands for: 2 off the symmetry plane
+        (itself and its mirror image), 1 on it; all 1 for a full mesh [-]."""
+        w = np.ones(len(self.points))
+        if self.symmetric:
+            w[:] = 2.0
+            w[self.plane_nodes] = 1.0
+        return w
+
+    def mirrored(self, idx: np.ndarray, pos: np.ndarray) -> np.ndarray:
+        """Positions ``pos`` of nodes ``idx`` with the mirror images of those off the plane
+        appended (the whole body's nodes for a symmetric mesh; ``pos`` itself otherwise)."""
+        if not self.symmetric:
+            return pos
+        off = np.abs(self.points[idx, 1]) >= 1e-12
+        return np.vstack([pos, pos[off] * np.array([1.0, -1.0, 1.0])])
 
     @property
     def n_nodes(self) -> int:
@@ -167,8 +206,11 @@ def finger_mesh(g: FingerGeometry, res: MeshResolution | None = None) -> FingerM
                          "grasping face")
     z_lv = _levels([0.0, g.bridge_thickness, zc0, zc1, g.height],
                    [res.bridge * s, res.below_hole * s, res.channel * s, res.above_hole * s])
-    y_lv = _levels([-0.5 * g.width, -0.5 * a, 0.5 * a, 0.5 * g.width],
-                   [res.side * s, res.channel * s, res.side * s])
+    if res.symmetric:
+        y_lv = _levels([0.0, 0.5 * a, 0.5 * g.width], [res.channel * s, res.side * s])
+    else:
+        y_lv = _levels([-0.5 * g.width, -0.5 * a, 0.5 * a, 0.5 * g.width],
+                       [res.side * s, res.channel * s, res.side * s])
     nx = res.along * s
     u = 0.5 * (1.0 - np.cos(np.pi * np.arange(nx + 1) / nx))  # cosine grading in [0, 1]
     tan_half = math.tan(0.5 * math.radians(g.cut_angle_deg))
@@ -276,7 +318,7 @@ def finger_mesh(g: FingerGeometry, res: MeshResolution | None = None) -> FingerM
                                             + 1e-12))
     return FingerMesh(points=pts, tets=tet_arr,
                       nodes_of_element=tuple(mapped(n) for n in nodes_of_element),
-                      channel_nodes=chan_idx, anchor_nodes=anchor)
+                      channel_nodes=chan_idx, anchor_nodes=anchor, symmetric=res.symmetric)
 
 
 def _nearest_line_nodes(pts: np.ndarray, nodes: np.ndarray, z: float) -> np.ndarray:
