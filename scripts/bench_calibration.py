@@ -84,8 +84,9 @@ def checks(p: GripperParams, results: dict, skip_fine: bool) -> None:
         s = static_bend(p, mesh)
         results["convergence"][name] = s
         print(f"finger at 0.15 N, {name} mesh ({s['nodes']} nodes): bending "
-              f"{s['bending_angle_deg']:.2f} deg, tip {s['tip_xz_m']} m, at rest within "
-              f"{s['max_speed']:.1e} m/s ({s['wall_time_s']:.0f} s)")
+              f"{s['bending_angle_deg']:.2f} deg, tip {s['tip_xz_m']} m, at rest after "
+              f"{s['settle_time_s']:.1f} s within {s['max_speed']:.1e} m/s "
+              f"({s['wall_time_s']:.0f} s)")
     if "finer" in results["convergence"]:
         a = results["convergence"]["default"]["bending_angle_deg"]
         b = results["convergence"]["finer"]["bending_angle_deg"]
