@@ -73,6 +73,25 @@ def test_symmetric_reference_matches_the_full_body():
     np.testing.assert_allclose(tip_half, tip_full, atol=0.01 * abs(a_full[-1]) * G.length)
 
 
+def test_bridge_grading_refines_towards_the_cut_apexes():
+    """Cells shrink towards the bridge top (where the cuts' apexes sit) by the given ratio;
+    the body is unchanged."""
+    graded = finger_mesh(G, MeshResolution(bridge_grading=3.0))
+    flat = finger_mesh(G, MeshResolution(bridge_grading=1.0))
+    assert graded.volume() == pytest.approx(flat.volume(), rel=1e-9)
+    res = MeshResolution()
+    edge = np.isclose(graded.points[:, 0], 0.0) & np.isclose(graded.points[:, 1], 0.0)
+    corner_z = np.unique(np.round(graded.points[edge, 2], 12))  # grid levels (no face nodes)
+    # bridge: 2 cells, 3:1, finest at the top; wall above it: 2 cells, 1:3, finest at the bottom
+    z = corner_z[: res.bridge + res.below_hole + 1]
+    cells = np.diff(z)
+    assert z[res.bridge] == pytest.approx(G.bridge_thickness)
+    assert cells[0] / cells[1] == pytest.approx(3.0) and cells[3] / cells[2] == pytest.approx(3.0)
+    for bad in (0.5, 25.0, float("nan")):
+        with pytest.raises(ValueError, match="mesh.bridge_grading"):
+            MeshResolution(bridge_grading=bad).validate()
+
+
 def test_finer_mesh_same_body():
     fine = finger_mesh(G, MeshResolution(scale=2))
     assert fine.n_nodes > 4 * finger_mesh(G).n_nodes

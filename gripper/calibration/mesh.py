@@ -15,6 +15,13 @@ Choices (written down because no paper gives them):
   needs no curved faces. The channel runs through each element along x.
 * **Grading**: nodes along each element are spaced by a cosine law, fine at both ends (2.3 mm at
   the default resolution) where the bridges bend, coarse in the stiff middle of the element.
+  Through the height, the cells shrink geometrically towards the bridge top (``bridge_grading``,
+  largest over smallest cell, 3 by default: cells of 0.75 mm below and 1.6 mm above it meet
+  there): each cut's apex sits on the bridge top, a re-entrant corner where the strain
+  concentrates (singular in the elastic solution), and cells graded towards it converge faster.
+  Measured on the static bend at 0.15 N (4 cells per element): the bending rises from 70.9°
+  (uniform) to 73.6° (ratio 2.5), 73.9° (3) and 74.4° (5), for 5 % (2.5) and 14 % (5) more
+  time per step; with 3 the reference run took 106 s against 103 s uniform.
 * **Resolution**: ``MeshResolution.scale`` multiplies every cell count; 1 is the default used
   for calibration.
 * **Symmetry**: the finger, its cable (on the centre line) and its bending are symmetric about the
@@ -65,6 +72,9 @@ class MeshResolution:
         uniform: no channel and no cuts (a plain bar of the same size): the beam check.
         symmetric: mesh only the half y >= 0 (see the module docstring). The half channel then
             gets ``channel`` cells across its half width. Default True.
+        bridge_grading: largest over smallest cell height in the bridge and in the wall from
+            the bridge top to the channel, the smallest at the bridge top [-]; 1 is uniform.
+            Default 3 (see the module docstring, "Grading").
         split: tetrahedra per hexahedral cell: ``"centre24"`` (default: 24, around centre and
             face nodes; little locking), ``"centre12"`` (12, centre node only) or ``"kuhn6"``
             (6, no added nodes; locks, see the module docstring).
@@ -80,8 +90,12 @@ class MeshResolution:
     uniform: bool = False
     split: str = "centre24"
     symmetric: bool = True
+    bridge_grading: float = 3.0
 
     def validate(self) -> MeshResolution:
+        if not (isinstance(self.bridge_grading, int | float) and 1.0 <= self.bridge_grading <= 20.0):
+            raise ValueError(f"mesh.bridge_grading: must be a number in [1, 20], "
+                             f"got {self.bridge_grading!r}")
         for name in ("uniform", "symmetric"):
             if not isinstance(getattr(self, name), bool):
                 raise ValueError(f"mesh.{name}: must be true or false, got {getattr(self, name)!r}")
@@ -165,6 +179,13 @@ def _levels(breaks: list[float], counts: list[int]) -> np.ndarray:
     return np.asarray(out)
 
 
+def _graded(n: int, length: float, ratio: float) -> np.ndarray:
+    """``n + 1`` levels over ``[0, length]``, cells growing geometrically from the first to
+    the last by ``ratio`` (largest over smallest cell)."""
+    w = ratio ** (np.arange(n) / max(n - 1, 1)) if n > 1 else np.ones(1)
+    return np.concatenate([[0.0], np.cumsum(w / w.sum() * length)])
+
+
 def _signed_volumes(points: np.ndarray, tets: np.ndarray) -> np.ndarray:
     a, b, c, d = (points[tets[:, i]] for i in range(4))
     return np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a) / 6.0
@@ -206,6 +227,12 @@ def finger_mesh(g: FingerGeometry, res: MeshResolution | None = None) -> FingerM
                          "grasping face")
     z_lv = _levels([0.0, g.bridge_thickness, zc0, zc1, g.height],
                    [res.bridge * s, res.below_hole * s, res.channel * s, res.above_hole * s])
+    if res.bridge_grading != 1.0 and not res.uniform:
+        nb, nh = res.bridge * s, res.below_hole * s
+        tb = g.bridge_thickness
+        below = tb - _graded(nb, tb, res.bridge_grading)[::-1]  # finest at the bridge top
+        above = tb + _graded(nh, zc0 - tb, res.bridge_grading)  # finest at the bridge top
+        z_lv = np.concatenate([below, above[1:], z_lv[nb + nh + 1:]])
     if res.symmetric:
         y_lv = _levels([0.0, 0.5 * a, 0.5 * g.width], [res.channel * s, res.side * s])
     else:

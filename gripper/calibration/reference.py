@@ -13,7 +13,8 @@ are held in it by a stiff spring on their y slide, the half carries half of ever
 centroids and best-fit rotations count each node's mirror image (``FingerMesh.node_weight``).
 A step of the half costs 0.7x one of the full body (24 against 34 ms, measured side by side at
 the default tolerance); the two agree within 0.2 % on the static bend (69.6° against 69.7° at
-0.15 N), the residue of the half's finer cells across the channel.
+0.15 N, measured with uniform cells through the height), the residue of the half's finer cells
+across the channel.
 
 **Cable.** As in paper 000 (cable forces at the hole points A_i), the cable acts through
 equivalent forces. Its path runs from the fixed guide behind the palm through one via point per
@@ -84,7 +85,7 @@ class ReferenceConfig:
     Attributes:
         mesh: mesh resolution (see :class:`MeshResolution`).
         tension_max: highest cable tension [N]. Default 0.25 N: keeps the default finger's
-            cuts open (largest hinge angle about 27°, two thirds of the 41° closing angle),
+            cuts open (largest hinge angle about 29°, 0.7 of the 41° closing angle),
             since the reference does not model contact between cut faces.
         n_levels: number of tension steps (quasi-static points) [-].
         duration: length of the whole test [s] (paper 000 §IV: 2 s).
