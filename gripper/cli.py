@@ -179,6 +179,12 @@ def _cmd_calibrate(args) -> int:
         if h["bending_error_frac"] is not None:
             parts.append(f"bending angle error {100 * h['bending_error_frac']:.2f} %")
         print(" ".join(parts))
+    settled = m.get("settled")
+    if settled and settled.get("tip_rms_frac") is not None:
+        errs = ", ".join(f"{lv['tension_N']:.3g} N: {100 * lv['bending_error_frac']:.1f} %"
+                         for lv in settled["levels"] if lv["bending_error_frac"] is not None)
+        print(f"fitted finger at rest at the static points: tip RMS error "
+              f"{100 * settled['tip_rms_frac']:.2f} % of length; bending angle error {errs}")
     print(f"paper 000 Table 2: {PAPER_STIFFNESS_NM_PER_DEG:g} N·m/deg per hinge")
     print(f"fit {m['fit_wall_time_s']:.1f} s wall; wrote {args.out}/calibration.json, "
           f"report.png, errors.csv")

@@ -51,6 +51,15 @@ def reference_and_fit(out: Path, p: GripperParams, results: dict) -> None:
     results["stiffness_Nm_per_rad"] = list(cal.stiffness)
     results["damping_Nms_per_rad"] = list(cal.damping)
     print(f"reference bending test {record.wall_time_s:.1f} s, fit {fit.wall_time_s:.1f} s")
+    m = cal.metrics
+    print(f"fit over the record: tip RMS {100 * m['tip_rms_frac']:.2f} % of length, element-angle "
+          f"RMS {', '.join(f'{a:.2f}' for a in m['angle_rms_deg'])} deg; held-out "
+          + ", ".join(f"{100 * h['tip_error_frac']:.2f} % tip, {100 * h['bending_error_frac']:.2f} "
+                      f"% bending" for h in m["held_out"]))
+    print(f"fitted finger at rest at the static points: tip RMS "
+          f"{100 * m['settled']['tip_rms_frac']:.2f} % of length, bending errors "
+          + ", ".join(f"{100 * lv['bending_error_frac']:.1f} %" for lv in m["settled"]["levels"]))
+    results["rest_check"] = hinge_at_rest(p, fit.stiffness, 0.15)
 
     calibrated = apply_calibration(p, out / "calibration.json")
     cfg = BendingConfig(r_max=0.1)  # the paper's 2 s at 5e-4 s, same step as the reference
@@ -60,6 +69,20 @@ def reference_and_fit(out: Path, p: GripperParams, results: dict) -> None:
     print(f"calibrated hinge bending test median {statistics.median(hinge):.4f} s: "
           f"{results['speedup']:.0f}x faster than the reference")
 
+
+
+def hinge_at_rest(p: GripperParams, stiffness, tension: float) -> float:
+    """Bending angle [deg] of the calibrated hinge finger at rest under ``tension`` [N],
+    to set beside the reference's static bend at the same tension."""
+    import numpy as np
+
+    from gripper.calibration.fit import STATIC_SETTLE_TAU, HingeSimulator
+
+    sim = HingeSimulator(p, 5e-4)
+    k = np.asarray(stiffness)
+    (ang, _, _), = sim.run(k[:, None], (STATIC_SETTLE_TAU * k)[:, None], np.full(200, tension),
+                           np.array([199]), static=True)
+    return float(ang[0, -1])
 
 
 # The convergence check's finer mesh: 1.5x the cells along each element, where the bridges bend
@@ -87,6 +110,9 @@ def checks(p: GripperParams, results: dict, skip_fine: bool) -> None:
               f"{s['bending_angle_deg']:.2f} deg, tip {s['tip_xz_m']} m, at rest after "
               f"{s['settle_time_s']:.1f} s within {s['max_speed']:.1e} m/s "
               f"({s['wall_time_s']:.0f} s)")
+    if "rest_check" in results:
+        print(f"calibrated hinge finger at rest at 0.15 N: {results['rest_check']:.2f} deg; "
+              f"reference at rest: {results['convergence']['default']['bending_angle_deg']:.2f} deg")
     if "finer" in results["convergence"]:
         a = results["convergence"]["default"]["bending_angle_deg"]
         b = results["convergence"]["finer"]["bending_angle_deg"]
