@@ -75,10 +75,10 @@ class FitConfig:
             record's mean over the last quarter of that hold, join the residual. At 1
             (default) each mean weighs as much as the samples it averages (the least-squares
             weight of a mean of noisy samples), so the static block counts a quarter of each
-            hold. Without it the transient alone left stiffness and damping
-            trading off: the fit matched the 2 s record (tip RMS 0.9 %) with springs so soft
-            and damped that the hinge finger, once at rest, bent 88° at 0.15 N where the
-            reference bends 74°. 0 turns the block off.
+            hold. Without it the transient alone left stiffness and damping trading off: the
+            fit matched the 2 s record (tip RMS 0.9 %) with springs so soft and damped that
+            the hinge finger, once at rest, bent 88° at 0.15 N where the reference bends 74°.
+            0 turns the block off.
     """
 
     fit_damping: bool = True
@@ -290,6 +290,8 @@ def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
     if use_static:
         s_tension, s_step, _ = _history(record, timestep, True)
         s_ang, s_tip, s_count = _settled_targets(record, static_fit)
+        s_ang_ok, s_tip_ok = np.isfinite(s_ang), np.isfinite(s_tip)
+        s_ang, s_tip = np.nan_to_num(s_ang), np.nan_to_num(s_tip)
         # Each target is a mean of s_count samples: weight sqrt(count) gives it the weight of
         # those samples (least squares with the noise of a mean).
         s_weight = cfg.static_weight * np.sqrt(np.repeat(s_count, nh + 2))
@@ -311,7 +313,7 @@ def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
         if use_static:
             settled = sim.run(ks, STATIC_SETTLE_TAU * ks, s_tension, s_step[static_fit],
                               static=True)
-            res = np.vstack([res, block(settled, s_ang, s_tip, True, True, s_weight)])
+            res = np.vstack([res, block(settled, s_ang, s_tip, s_ang_ok, s_tip_ok, s_weight)])
         return res if x.ndim == 2 else res[:, 0]
 
     k0 = _initial_stiffness(record, p)
@@ -342,7 +344,7 @@ def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
 
 
 def _settled_targets(record: BendingRecord, static_idx: np.ndarray
-                     ) -> tuple[np.ndarray, np.ndarray]:
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Angles (B2..Bn, from B1) and tip of the record near rest at each static sample: the
     mean over the last quarter of its hold (from the previous static sample), which averages
     measurement noise instead of taking one sample; and how many samples each mean took."""
