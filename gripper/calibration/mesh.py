@@ -27,7 +27,8 @@ Choices (written down because no paper gives them):
 * **Symmetry**: the finger, its cable (on the centre line) and its bending are symmetric about the
   bending plane y = 0, so by default only the half y >= 0 is meshed (``symmetric=True``); the
   reference model holds the nodes on the plane in it and applies half of each load. This is the
-  half of a full mesh with twice the cells across the channel, at about 0.6x its nodes. Each
+  half of a full mesh with twice the cells across the channel (1903 nodes against 3491 mirrored;
+  the default full mesh, one cell across the channel, has 2748). Each
   node's ``node_weight`` (2 off the plane, 1 on it) counts its mirror image wherever the whole
   body is measured (centroids, best-fit rotations, load shares).
 * **Split**: linear tetrahedra lock in bending, and badly so when nearly incompressible
@@ -61,10 +62,12 @@ class MeshResolution:
     Attributes:
         scale: refinement factor applied to every count [-]; 1 default, 2 for convergence.
         along: cells along one element (x), cosine-graded [-]. Default 4: 2.3 mm at the ends
-            where the bridges bend (3 runs 1.7x faster but bends 12 % less; the README's
-            convergence table has the figures).
-        bridge: cells through the bridge thickness [-]. Default 2 (1.5 mm): the bridges carry
-            the bending, so they get two cells through their thickness.
+            where the bridges bend (3 runs 1.7x faster but bent 12 % less in an unsettled
+            comparison of version 0.4.0; the README's convergence table has the figures at
+            rest for 4, 6 and 8).
+        bridge: cells through the bridge thickness [-]. Default 2 (2.25 and 0.75 mm with the
+            default ``bridge_grading``): the bridges carry the bending, so they get two cells
+            through their thickness.
         below_hole: cells from the bridge top to the channel floor [-]. Default 2.
         channel: cells across the channel's height and width [-]. Default 1.
         above_hole: cells from the channel roof to the grasping face [-]. Default 1.

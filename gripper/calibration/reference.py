@@ -314,7 +314,8 @@ class ReferenceFinger:
             if b < 0:
                 continue
             j = m.body_jntadr[b] + 1  # flexcomp's slides are x, y, z in this order
-            assert np.allclose(m.jnt_axis[j], [0.0, 1.0, 0.0])
+            if not np.allclose(m.jnt_axis[j], [0.0, 1.0, 0.0]):
+                raise RuntimeError("reference: flexcomp node joints are not x, y, z slides")
             m.jnt_stiffness[j] = k
             m.qpos_spring[m.jnt_qposadr[j]] = 0.0
 
@@ -535,8 +536,9 @@ def static_bend(params: GripperParams | None = None, mesh: MeshResolution | None
         if d.time > ramp_time and previous is not None and abs(bend - previous) < rest_tol_deg:
             break
         if d.time >= max_time:
+            moved = abs(bend - previous) if previous is not None else float("nan")
             raise SimulationUnstable(f"static bend: not at rest after {max_time} s "
-                                     f"(bending still moves {abs(bend - previous):.3f}° per 0.5 s)")
+                                     f"(bending still moves {moved:.3f}° per 0.5 s)")
         previous = bend
     deg = np.degrees(angles)
     return {"bending_angle_deg": float(deg[-1] - deg[0]), "element_angles_deg": deg.tolist(),
