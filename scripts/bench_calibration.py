@@ -14,8 +14,11 @@ import statistics
 import time
 from pathlib import Path
 
+import numpy as np
+
 from gripper.bending import BendingConfig, run_bending_test
 from gripper.calibration.calfile import apply_calibration
+from gripper.calibration.fit import STATIC_SETTLE_TAU, HingeSimulator
 from gripper.calibration.mesh import MeshResolution
 from gripper.calibration.pipeline import calibrate
 from gripper.calibration.reference import beam_end_moment_check, static_bend
@@ -74,10 +77,6 @@ def reference_and_fit(out: Path, p: GripperParams, results: dict) -> None:
 def hinge_at_rest(p: GripperParams, stiffness, tension: float) -> float:
     """Bending angle [deg] of the calibrated hinge finger at rest under ``tension`` [N],
     to set beside the reference's static bend at the same tension."""
-    import numpy as np
-
-    from gripper.calibration.fit import STATIC_SETTLE_TAU, HingeSimulator
-
     sim = HingeSimulator(p, 5e-4)
     k = np.asarray(stiffness)
     (ang, _, _), = sim.run(k[:, None], (STATIC_SETTLE_TAU * k)[:, None], np.full(200, tension),

@@ -397,6 +397,19 @@ def simulate_record(sim: HingeSimulator, k: np.ndarray, c: np.ndarray, record: B
                          static=record.static.copy(), wall_time_s=wall)
 
 
+def _static_point_error(record: BendingRecord, model: BendingRecord, i: int,
+                        length: float) -> dict:
+    """Static point ``i`` of ``record`` against ``model`` there: tension, tip error as a
+    fraction of ``length`` and relative error of the bending angle (None where not finite)."""
+    j = int(record.static[i])
+    tip_err = float(np.linalg.norm(model.tip_xz_m[j] - record.tip_xz_m[j]))
+    bend_ref = float(record.element_angles_deg[j, -1] - record.element_angles_deg[j, 0])
+    bend_err = abs(float(model.element_angles_deg[j, -1]) - bend_ref) / max(abs(bend_ref), 1e-9)
+    return {"level": i, "tension_N": float(record.tension_N[j]),
+            "tip_error_frac": tip_err / length if math.isfinite(tip_err) else None,
+            "bending_error_frac": bend_err if math.isfinite(bend_err) else None}
+
+
 def settled_metrics(record: BendingRecord, settled: BendingRecord, p: GripperParams) -> dict:
     """The fitted hinge finger at rest at each static point's tension, against the record there.
 
@@ -405,20 +418,11 @@ def settled_metrics(record: BendingRecord, settled: BendingRecord, p: GripperPar
     error of the bending angle. For a reference record this is the calibrated model's static
     accuracy, whatever the transient fit did with the damping.
     """
-    ref_ang = record.element_angles_deg - record.element_angles_deg[:, :1]
-    L = p.finger.length
-    levels, sq = [], []
-    for i, j in enumerate(record.static):
-        tip_err = float(np.linalg.norm(settled.tip_xz_m[j] - record.tip_xz_m[j]))
-        bend_ref = float(ref_ang[j, -1])
-        bend_err = abs(float(settled.element_angles_deg[j, -1]) - bend_ref) / max(abs(bend_ref),
-                                                                                   1e-9)
-        if math.isfinite(tip_err):
-            sq.append(tip_err ** 2)
-        levels.append({"level": i, "tension_N": float(record.tension_N[j]),
-                       "tip_error_frac": tip_err / L if math.isfinite(tip_err) else None,
-                       "bending_error_frac": bend_err if math.isfinite(bend_err) else None})
-    return {"tip_rms_frac": math.sqrt(sum(sq) / len(sq)) / L if sq else None, "levels": levels}
+    levels = [_static_point_error(record, settled, i, p.finger.length)
+              for i in range(len(record.static))]
+    tips = [lv["tip_error_frac"] for lv in levels if lv["tip_error_frac"] is not None]
+    return {"tip_rms_frac": math.sqrt(sum(t * t for t in tips) / len(tips)) if tips else None,
+            "levels": levels}
 
 
 def fit_metrics(record: BendingRecord, fitted: BendingRecord, p: GripperParams,
@@ -447,15 +451,5 @@ def fit_metrics(record: BendingRecord, fitted: BendingRecord, p: GripperParams,
         "angle_rms_deg": ang_rms,
         "held_out": [],
     }
-    for i in sorted(held):
-        j = int(record.static[i])
-        tip_err = float(np.linalg.norm(fitted.tip_xz_m[j] - record.tip_xz_m[j]))
-        bend_ref = float(ref_ang[j, -1])
-        bend_fit = float(fitted.element_angles_deg[j, -1])
-        bend_err = abs(bend_fit - bend_ref) / max(abs(bend_ref), 1e-9)
-        out["held_out"].append({
-            "level": i, "tension_N": float(record.tension_N[j]),
-            "tip_error_frac": tip_err / L if math.isfinite(tip_err) else None,
-            "bending_error_frac": bend_err if math.isfinite(bend_err) else None,
-        })
+    out["held_out"] = [_static_point_error(record, fitted, i, L) for i in sorted(held)]
     return out

@@ -48,6 +48,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -132,14 +133,14 @@ class FingerMesh:
     anchor_nodes: np.ndarray
     symmetric: bool = False
 
-    @property
+    @cached_property
     def plane_nodes(self) -> np.ndarray:
         """Indices of the nodes on the symmetry plane y = 0 (empty for a full mesh)."""
         if not self.symmetric:
             return np.empty(0, dtype=int)
         return np.flatnonzero(np.abs(self.points[:, 1]) < 1e-12)
 
-    @property
+    @cached_property
     def node_weight(self) -> np.ndarray:
         """How many nodes of the whole body each node stands for: 2 off the symmetry plane
         (itself and its mirror image), 1 on it; all 1 for a full mesh [-]."""
@@ -154,7 +155,7 @@ class FingerMesh:
         appended (the whole body's nodes for a symmetric mesh; ``pos`` itself otherwise)."""
         if not self.symmetric:
             return pos
-        off = np.abs(self.points[idx, 1]) >= 1e-12
+        off = self.node_weight[idx] > 1.0
         return np.vstack([pos, pos[off] * np.array([1.0, -1.0, 1.0])])
 
     @property
