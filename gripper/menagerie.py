@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from gripper.closure import teeth_closure_stiffness
 from gripper.model import build_gripper_spec, build_scene_spec
 from gripper.params import GripperParams
 
@@ -32,7 +33,7 @@ _UNITS = {
     "contraction_speed": "m/s", "n_fingers": "-", "palm_radius": "m", "palm_thickness": "m",
     "mount_tilt_deg": "deg", "palm_mass": "kg", "z_travel": "m", "xy_enabled": "-",
     "xy_travel": "m", "max_force": "N", "home_height": "m", "timestep": "s",
-    "integrator": "-", "gravity": "m/s²",
+    "integrator": "-", "gravity": "m/s²", "closure": "-", "closure_stiffness": "N·m/rad",
 }
 _UNIT_OVERRIDES = {("lift", "stiffness"): "N/m"}  # same field name, other section's unit
 
@@ -56,6 +57,8 @@ def parameter_table(params: GripperParams | None = None) -> str:
             lines.append(f"| {section} | {key} | {value} | {unit} |")
     derived = [
         ("finger", "closure_angle_deg", f"{p.finger.closure_angle_deg:.2f}", "deg"),
+        ("springs", "closed-cut stiffness (teeth estimate)",
+         f"{teeth_closure_stiffness(p.finger, p.material):.3g}", "N·m/rad"),
         ("finger", "length", f"{p.finger.length:g}", "m"),
         ("cable", "axial_stiffness (EA)", f"{p.cable.axial_stiffness:.4g}", "N"),
         ("servo", "max_cable_tension", f"{p.servo.max_cable_tension:.4g}", "N"),

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from gripper.closure import HINGE_LIMIT_IMPEDANCE, MIN_STEPS, tune_closure_limits
 from gripper.geometry import (
     cable_line_z,
     cable_via_points,
@@ -113,8 +114,11 @@ def _add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.Mjs
     # it: 0.999 let a hinge overrun 0.64° at stall tension at 5e-4 s (12° at the trials' 2 ms);
     # 0.9995 gives 0.32° (6° at 2 ms). 0.9998 and 0.9999 (MuJoCo's cap) diverged in random-control
     # smoke runs of 12-element fingers at 1 ms, as did a two-step time constant.
-    hinge.joint.solref_limit = [4.0 * p.sim.timestep, 1.0]
-    hinge.joint.solimp_limit = [0.9995, 0.9995, 0.001, 0.5, 2.0]
+    # This is the rigid stop (springs.closure = "rigid"); the default compliant closure sets each
+    # hinge's time constant from the teeth's stiffness instead (gripper.closure).
+    hinge.joint.solref_limit = [MIN_STEPS * p.sim.timestep, 1.0]
+    d = HINGE_LIMIT_IMPEDANCE
+    hinge.joint.solimp_limit = [d, d, 0.001, 0.5, 2.0]
     pad = spec.add_default("pad", root)
     pad.site.type = mujoco.mjtGeom.mjGEOM_BOX
     pad.site.group = 4
@@ -246,16 +250,23 @@ def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames) -
                         objtype=mujoco.mjtObj.mjOBJ_SITE)
 
 
-def tune_cable_stiffness(spec: mujoco.MjSpec, p: GripperParams) -> None:
+def tune_soft_limits(spec: mujoco.MjSpec, p: GripperParams) -> None:
+    """Set the cable limits' and the hinge limits' ``solref`` from physical stiffnesses (the
+    cable's EA/L, the closed cut's): compiles once to read the inverse inertias."""
+    model = spec.compile()
+    tune_cable_stiffness(spec, p, model)
+    tune_closure_limits(spec, p, model)
+
+
+def tune_cable_stiffness(spec: mujoco.MjSpec, p: GripperParams, model: mujoco.MjModel) -> None:
     """Set each cable limit's ``solref`` so the rope stretches like a cable of stiffness EA/L.
 
     A MuJoCo limit with time constant tau, damping ratio 1 and impedance d behaves, for a slow
     load, like a spring of stiffness k = 1 / (tau² (1-d) A), A being the tendon's inverse inertia
     (``tendon_invweight0``). Solving for tau gives the cable's EA/L; tau is kept >= 2 time steps,
     MuJoCo's stability floor (then the rope is softer than the real cable: documented in the
-    model README). Compiles once to read the inverse inertias; edits ``spec`` in place.
+    model README). ``model`` is ``spec`` compiled; edits ``spec`` in place.
     """
-    model = spec.compile()
     d = CABLE_SOLIMP[1]
     for t in spec.tendons:
         if not t.name.endswith("_cable"):
@@ -364,7 +375,7 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
                         objname=name, objtype=mujoco.mjtObj.mjOBJ_JOINT)
     spec.add_sensor(name="palm_pos", type=mujoco.mjtSensor.mjSENS_FRAMEPOS, objname="palm_center",
                     objtype=mujoco.mjtObj.mjOBJ_SITE)
-    tune_cable_stiffness(spec, p)
+    tune_soft_limits(spec, p)
     return spec
 
 
@@ -418,5 +429,5 @@ def build_bending_spec(p: GripperParams, *, timestep: float | None = None) -> mu
     names = add_finger(spec, spec.worldbody, p, "f0", [0, 0, 0.1], quat, defaults)
     add_cable_drive(spec, p, names)
     spec.worldbody.add_camera(name="top", pos=[0.05, 0.03, 0.35], xyaxes=[1, 0, 0, 0, 1, 0])
-    tune_cable_stiffness(spec, p)
+    tune_soft_limits(spec, p)
     return spec

@@ -5,13 +5,16 @@ import pytest
 
 from gripper.bending import BendingConfig, run_bending_test
 from gripper.cli import main
+from gripper.closure import closure_stiffness, teeth_closure_stiffness
 from gripper.params import GripperParams
 
 
-def _closing_design():
-    """30° cuts close (27.4° per hinge) well inside the servo's travel."""
+def _closing_design(closure: str = "rigid"):
+    """30° cuts close (27.4° per hinge) well inside the servo's travel. The limit checks use the
+    rigid stop, the hinge chain's idealisation; the default compliant stop is checked below."""
     p = GripperParams()
-    return p.replace(finger=p.finger.replace(cut_angle_deg=30.0))
+    return p.replace(finger=p.finger.replace(cut_angle_deg=30.0),
+                     springs=p.springs.replace(closure=closure))
 
 
 @pytest.fixture(scope="module", params=["dynamic", "quasi_static"])
@@ -52,6 +55,20 @@ def test_cable_never_pushes(closing_run):
     assert res.warnings == 0
 
 
+def test_compliant_closure_is_the_teeth_spring():
+    """Past the closure angle the default stop is a spring of the teeth's stiffness: at rest, the
+    overrun times K_c carries what the cable's moment leaves over after the bridge spring."""
+    p = _closing_design("teeth")
+    k = closure_stiffness(p)
+    assert k == pytest.approx(teeth_closure_stiffness(p.finger, p.material))
+    res = run_bending_test(BendingConfig(mode="quasi_static", r_max=0.4, n_points=31), p)
+    overrun = np.radians(res.joint_angles_deg - p.finger.closure_angle_deg)
+    closed = res.limit_active & (overrun > np.radians(0.5))
+    assert closed.sum() > 20
+    excess = (res.cable_moment_Nm - res.spring_moment_Nm)[closed]
+    assert np.abs(k * overrun[closed] / excess - 1.0).max() < 0.02
+
+
 def test_quasi_static_moment_balance():
     res = run_bending_test(BendingConfig(mode="quasi_static", r_max=0.4, n_points=17))
     free = ~res.limit_active & (res.spring_moment_Nm > 1e-3)
@@ -85,3 +102,20 @@ def test_bad_config():
 def test_hinge_limits_held_at_stall(closing_run):
     p, res = closing_run
     assert res.joint_angles_deg.max() <= p.finger.closure_angle_deg + 0.5
+
+
+def test_teeth_stiffness_matches_its_closed_form():
+    """E·w·∫ s²/t dz with t linear in z has a closed form: u = t, s = c - u/(2T)."""
+    p = GripperParams()
+    g = p.finger
+    T = np.tan(np.radians(g.cut_angle_deg) / 2)
+    P, a, h = g.pitch, g.bridge_thickness, g.hinge_z
+    u_top = P - 2 * (g.height - a) * T
+    c = a - h + P / (2 * T)
+    integral = (c**2 * np.log(P / u_top) - c / T * (P - u_top) + (P**2 - u_top**2) / (8 * T**2)) / (2 * T)
+    k = teeth_closure_stiffness(g, p.material)
+    assert k == pytest.approx(p.material.youngs_modulus * g.width * integral, rel=1e-6)
+    # Far stiffer than the bridge (paper 000: 0.109 N·m/rad), and softer for a softer silicone.
+    assert k > 10 * p.springs.stiffness[0]
+    softer = p.material.replace(youngs_modulus=0.5 * p.material.youngs_modulus)
+    assert teeth_closure_stiffness(g, softer) == pytest.approx(0.5 * k)

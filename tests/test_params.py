@@ -36,6 +36,8 @@ BAD = [
     ({"finger": {"height": float("nan")}}, "finger.height"),
     ({"servo": {"preset": "unobtainium"}}, "servo.preset"),
     ({"springs": {"stiffness": [0.1, 0.1]}}, "springs.stiffness"),
+    ({"springs": {"closure": "glued"}}, "springs.closure"),
+    ({"springs": {"closure_stiffness": 0.0}}, "springs.closure_stiffness"),
     ({"layout": {"n_fingers": 0}}, "layout.n_fingers"),
     ({"finger": {"bogus": 1}}, "finger.bogus"),
 ]

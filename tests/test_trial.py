@@ -1,5 +1,7 @@
 """One grasp trial on the rigid block: success, determinism, error handling, pull-out."""
 
+import dataclasses
+
 import mujoco
 import numpy as np
 import pytest
@@ -100,15 +102,19 @@ def test_chunking_does_not_change_physics():
         assert a[key] == b[key], key
 
 
-@pytest.mark.parametrize("name, hard_scale", [("balloon", 2.5), ("paper_box", 2.3)])
-def test_closing_much_harder_damages_deformable_objects(name, hard_scale):
+@pytest.mark.parametrize("name, hard_scale, card", [("balloon", 2.5, None), ("paper_box", 2.3, 1.2e-4)])
+def test_closing_much_harder_damages_deformable_objects(name, hard_scale, card):
     """Damage is physics, not a label: the default closing command leaves the balloon whole and
     the box undented, while the servo driven to its full travel (scale 2.5 or 2.3 of the
     default, stall tension on the cables) bursts the balloon (membrane strain above 0.25) and
-    dents the box (permanent dent beyond 2 mm after spring-back)."""
+    dents the box (permanent dent beyond 2 mm after spring-back). The box is of thin card
+    (0.12 mm): the default 0.2 mm card takes the stall with a dent of about 0.8 mm, since past
+    the closure angle the cable's extra pull goes mostly into the fingers' closed cuts."""
     obj = get_object(name)
-    soft = run_trial(name, seed=0, index=0)
-    hard = run_trial(name, seed=0, index=0, protocol=GraspProtocol(close_command_scale=hard_scale))
+    if card is not None:
+        obj = dataclasses.replace(obj, thickness=card)
+    soft = run_trial(obj, seed=0, index=0)
+    hard = run_trial(obj, seed=0, index=0, protocol=GraspProtocol(close_command_scale=hard_scale))
     assert soft["status"] == hard["status"] == "ok"
     assert soft["success"] and not soft["damaged"]
     assert soft["damage_measure"] < 0.5 * obj.damage_limit
@@ -164,3 +170,15 @@ def test_bag_pack_does_not_sink_through_the_film():
     depth = [-f.contact[i].dist for i in range(f.ncon)
              if pack in f.contact[i].geom and (f.contact[i].flex >= 0).any()]
     assert depth and max(depth) < 2.0 * float(m.flex_radius[probe.flex])
+
+
+def test_grasp_outcome_does_not_depend_on_the_time_step():
+    """The closed cut's compliance is a material property (gripper.closure), so halving the step
+    changes neither the outcome nor, beyond the sampling of peaks, the squeeze. With the rigid
+    stop, whose overrun grows as the step squared, this cylinder is held at 2 ms and drops out
+    in the hold at 1 ms."""
+    recs = [run_trial("cylinder", seed=0, index=1, protocol=GraspProtocol(timestep=dt))
+            for dt in (0.001, 0.002)]
+    assert all(r["status"] == "ok" and r["success"] for r in recs)
+    # Peak total force: the same within 10 % (chunks of 20 steps sample it every 20 / 40 ms).
+    assert recs[0]["peak_total_force_N"] == pytest.approx(recs[1]["peak_total_force_N"], rel=0.10)
