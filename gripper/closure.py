@@ -1,33 +1,41 @@
 """The closed cut: how a hinge resists closing past the angle where its cut's faces meet.
 
 Past the closure angle the two silicone teeth on either side of a cut press on each other. The
-default model (``springs.closure = "teeth"``) treats that as a rotational spring of stiffness
-``K_c`` beyond the closure angle, estimated from the finger's own geometry and modulus, and
-realises it with the hinge's MuJoCo joint limit: a soft limit of time constant ``tau``, damping
-ratio 1 and impedance ``d`` holds a static load as a spring of stiffness
+default model (``springs.closure = "teeth"``) gives each hinge, beyond its closure angle, the
+moment of those teeth squeezed as a neo-Hookean solid, computed from the finger's own geometry
+and modulus, and realises it with the hinge's MuJoCo joint limit.
 
-    K = 1 / ((1 - d) · tau² · A),
+**The teeth.** An extra closure θ moves the cut's faces together by θ·s at height s above the
+hinge axis. The tooth material between two cuts, thickness t(z) = pitch - 2·(z - bridge)·
+tan(cut/2) at height z, is squeezed across its thickness; each hinge owns half of each
+neighbouring tooth, two halves in series of total thickness t, so the strain there is
+ε = θ·s/t. With the uniaxial nominal stress of an incompressible neo-Hookean solid of shear
+modulus μ = E/3, σ = μ·(λ⁻² - λ), λ = 1 - ε, the moment is
 
-``A`` the limit's inverse inertia (``dof_invweight0``): the limit force f balances the load
-when R·f = aref, R = (1-d)/d·A, aref = -d·k·r, k = 1/(d·tau)² (MuJoCo's soft-constraint
-definitions; R is diagonal, so this holds whichever other limits are active). Solving for tau
-gives each hinge's ``solref``. The stiffness is a property of the silicone, so it does not
-change with the time step, and neither do grasp results (``scripts/bench_speed.py``, README
-"Time step").
+    M(θ) = width · ∫ σ(θ·s/t(z)) · s dz,   z from the bridge top to the grasping face.
 
-Teeth estimate (:func:`teeth_closure_stiffness`): an extra closure dθ moves the cut's faces
-together by dθ·s at height s above the hinge axis. The tooth material between two cuts,
-thickness t(z) = pitch - 2·(z - bridge)·tan(cut/2) at height z, is squeezed across its
-thickness; each hinge owns half of each neighbouring tooth, two halves in series of total
-thickness t, so the face pressure is E·dθ·s/t and the moment about the hinge
+For small θ it is K_c·θ with K_c = E·width·∫ s²/t dz (:func:`teeth_closure_stiffness`, 1.72
+N·m/rad for the default design, 16× the bridge's own spring, paper 000: 0.109 N·m/rad); it
+stiffens as the thin tips of the teeth (3.6 mm at the grasping face) are squashed: twice as
+stiff at 8°, ten times at 11.9°. Left out: the faces' gradual contact from the grasping face
+down, and the tips bulging sideways; so it is good to a factor of about two.
+``closure="stiffness"`` takes a measured linear stiffness instead.
 
-    K_c = E · width · ∫ (z - z_hinge)² / t(z) dz,   z from the bridge top to the grasping face.
+**As a MuJoCo limit.** A soft limit of time constant tau, damping ratio 1 and impedance d(r)
+(solimp: d rising from d0 to d1 over the violation ``width``) holds a static load as a spring
+of secant stiffness
 
-Uniaxial, linear, small strain, faces in full contact: for the default design 1.7 N·m/rad, 16×
-the bridge's own spring (paper 000: 0.109 N·m/rad). It leaves out the silicone's stiffening at
-large compression (the Yeoh fit stiffens) and the faces' gradual contact from the grasping
-face down (softer at first), so it is good to a factor of about two; ``closure="stiffness"``
-takes a measured value.
+    K(r) = d(r)² / (d1² · (1 - d(r)) · tau² · A),
+
+``A`` the limit's inverse inertia (``dof_invweight0``): at rest the limit force f satisfies
+R·f = aref with R = (1-d)/d·A and aref = -k·d·r, k = 1/(d1·tau)² (MuJoCo's soft-constraint
+definitions; R is diagonal, so this holds whichever other limits are active). Each hinge's tau
+sets K at zero overrun to K_c; the impedance curve, the same for every hinge, follows the
+teeth's stiffening from d0 = 0.999 to d1 = 0.9999 (MuJoCo's cap): a tenfold rise, fitted by
+least squares to M(θ)/θ (:func:`teeth_impedance`). Past ``width`` the stop stays at ten times
+K_c. The same limit holds the small extension stop. All of it is a property of the silicone,
+so it does not change with the time step, and neither do grasp results (README, "Closed cuts
+and the time step").
 
 Example:
     >>> from gripper.params import GripperParams
@@ -39,39 +47,88 @@ Example:
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 
 import mujoco
 import numpy as np
 from scipy.integrate import quad
+from scipy.optimize import brentq, least_squares
 
 from gripper.params import DEG, FingerGeometry, GripperParams, Material
 
 # Shortest limit time constant, in time steps, for every closure model: four steps held the
 # stiffest stable stop under random commands (see gripper.model._add_defaults).
 MIN_STEPS = 4.0
-# Impedance of the hinge limits (solimp d0 = dwidth: constant over the violation).
+# Impedance of the rigid stop and of a linear closure stiffness (constant over the violation).
 HINGE_LIMIT_IMPEDANCE = 0.9995
+# Impedance range of the teeth's stiffening stop: d0 sets the softest, d1 (MuJoCo's cap) the
+# stiffest; G(d1)/G(d0) = 10 with G(d) = d²/(1-d).
+TEETH_IMPEDANCE = (0.999, 0.9999)
+# Strain at which a tooth counts as squashed flat (the neo-Hookean stress diverges at 1).
+MAX_TOOTH_STRAIN = 0.999
+
+
+def _tooth(g: FingerGeometry):
+    half_tan = math.tan(0.5 * g.cut_angle_deg * DEG)
+    return lambda z: g.pitch - 2.0 * (z - g.bridge_thickness) * half_tan
 
 
 def teeth_closure_stiffness(g: FingerGeometry, material: Material) -> float:
-    """Rotational stiffness of a closed cut from compressing its two teeth [N·m/rad].
-
-    See the module docstring for the model and its limits.
-    """
-    half_tan = math.tan(0.5 * g.cut_angle_deg * DEG)
-
-    def integrand(z: float) -> float:
-        tooth = g.pitch - 2.0 * (z - g.bridge_thickness) * half_tan
-        return (z - g.hinge_z) ** 2 / tooth
-
-    integral, _ = quad(integrand, g.bridge_thickness, g.height)
+    """Small-overrun rotational stiffness of a closed cut, K_c = E·w·∫ s²/t dz [N·m/rad]."""
+    tooth = _tooth(g)
+    integral, _ = quad(lambda z: (z - g.hinge_z) ** 2 / tooth(z), g.bridge_thickness, g.height)
     return material.youngs_modulus * g.width * integral
 
 
+def teeth_moment(g: FingerGeometry, material: Material, overrun: float) -> float:
+    """Moment of the squeezed neo-Hookean teeth at ``overrun`` past closure [N·m] (overrun [rad])."""
+    if overrun <= 0.0:
+        return 0.0
+    tooth = _tooth(g)
+    mu = material.youngs_modulus / 3.0
+
+    def integrand(z: float) -> float:
+        s = z - g.hinge_z
+        lam = 1.0 - min(overrun * s / tooth(z), MAX_TOOTH_STRAIN)
+        return mu * (lam ** -2 - lam) * s
+
+    moment, _ = quad(integrand, g.bridge_thickness, g.height, limit=200)
+    return g.width * moment
+
+
+def _g(d):
+    return d * d / (1.0 - d)
+
+
+def _sigmoid(x, mid: float, power: float):
+    """MuJoCo's impedance shape y(x) on [0, 1] (XML reference, solimp)."""
+    x = np.clip(x, 0.0, 1.0)
+    a, b = mid ** (1.0 - power), (1.0 - mid) ** (1.0 - power)
+    return np.where(x <= mid, a * x ** power, 1.0 - b * (1.0 - x) ** power)
+
+
+@functools.lru_cache(maxsize=64)
+def teeth_impedance(g: FingerGeometry, material: Material) -> tuple[float, float, float, float, float]:
+    """The hinge limits' ``solimp`` (d0, d1, width [rad], midpoint, power) whose secant
+    stiffness follows the teeth's M(θ)/θ, relative to its value at zero overrun."""
+    d0, d1 = TEETH_IMPEDANCE
+    k0 = teeth_closure_stiffness(g, material)
+    top = _g(d1) / _g(d0)
+    width = brentq(lambda th: teeth_moment(g, material, th) / (th * k0) - top, 1e-4, 1.5)
+    theta = np.linspace(width / 50, width, 50)
+    ratio = np.array([teeth_moment(g, material, th) / (th * k0) for th in theta])
+    d_target = np.array([brentq(lambda d, r=r: _g(d) - r * _g(d0), d0, d1) for r in np.minimum(ratio, top)])
+    y_target = (d_target - d0) / (d1 - d0)
+    fit = least_squares(lambda q: _sigmoid(theta / width, q[0], q[1]) - y_target, [0.5, 2.0],
+                        bounds=([0.01, 1.0], [0.99, 10.0]))
+    mid, power = (float(v) for v in fit.x)
+    return d0, d1, float(width), mid, power
+
+
 def closure_stiffness(p: GripperParams) -> float | None:
-    """The closed-cut stiffness the model realises [N·m/rad]; ``None`` for the rigid stop."""
+    """The closed-cut stiffness at zero overrun [N·m/rad]; ``None`` for the rigid stop."""
     if p.springs.closure == "rigid":
         return None
     if p.springs.closure == "stiffness":
@@ -79,19 +136,38 @@ def closure_stiffness(p: GripperParams) -> float | None:
     return teeth_closure_stiffness(p.finger, p.material)
 
 
+def closure_impedance(p: GripperParams) -> tuple[float, float, float, float, float]:
+    """The hinge limits' ``solimp``: the teeth's stiffening curve, or constant for the others."""
+    if p.springs.closure == "teeth":
+        return teeth_impedance(p.finger, p.material)
+    d = HINGE_LIMIT_IMPEDANCE
+    return d, d, 0.001, 0.5, 2.0
+
+
+def realised_secant_stiffness(p: GripperParams, overrun) -> np.ndarray:
+    """Secant stiffness M/θ the MuJoCo limit realises at ``overrun`` [rad], [N·m/rad] (compliant
+    closures only): K_c times G(d(θ))/G(d(0)), G(d) = d²/(1-d)."""
+    k0 = closure_stiffness(p)
+    if k0 is None:
+        raise ValueError("springs.closure: the rigid stop has no stiffness of its own")
+    d0, d1, width, mid, power = closure_impedance(p)
+    d = d0 + (d1 - d0) * _sigmoid(np.abs(np.asarray(overrun, dtype=float)) / width, mid, power)
+    return k0 * _g(d) / _g(d0)
+
+
 def closure_time_constants(p: GripperParams, inv_weight: np.ndarray) -> np.ndarray:
     """Limit time constants [s] of hinges with inverse inertias ``inv_weight`` [1/(kg·m²)].
 
-    Rigid: ``MIN_STEPS`` time steps. Compliant: the tau that makes the limit a spring of the
-    closure stiffness, but never below ``MIN_STEPS`` steps; where that floor binds, the stop is
-    softer than asked and a warning says so.
+    Rigid: ``MIN_STEPS`` time steps. Compliant: the tau that gives the closure stiffness at zero
+    overrun, tau = (d0/d1)/sqrt((1-d0)·A·K_c), but never below ``MIN_STEPS`` steps; where that
+    floor binds, the stop is softer than asked and a warning says so.
     """
     floor = MIN_STEPS * p.sim.timestep
     k = closure_stiffness(p)
     if k is None:
         return np.full(len(inv_weight), floor)
-    d = HINGE_LIMIT_IMPEDANCE
-    tau = 1.0 / np.sqrt((1.0 - d) * k * np.asarray(inv_weight, dtype=float))
+    d0, d1 = closure_impedance(p)[:2]
+    tau = (d0 / d1) / np.sqrt((1.0 - d0) * k * np.asarray(inv_weight, dtype=float))
     if np.any(tau < floor):
         warnings.warn(
             f"springs.closure: a closed-cut stiffness of {k:.3g} N·m/rad needs limit time "
@@ -102,11 +178,13 @@ def closure_time_constants(p: GripperParams, inv_weight: np.ndarray) -> np.ndarr
 
 
 def tune_closure_limits(spec: mujoco.MjSpec, p: GripperParams, model: mujoco.MjModel) -> None:
-    """Set each hinge limit's ``solref`` from the closure model; ``model`` is ``spec`` compiled
-    (for the inverse inertias). Edits ``spec`` in place."""
+    """Set each hinge limit's ``solref`` and ``solimp`` from the closure model; ``model`` is
+    ``spec`` compiled (for the inverse inertias). Edits ``spec`` in place."""
     hinges = [j for j in spec.joints if j.type == mujoco.mjtJoint.mjJNT_HINGE and "_hinge" in j.name]
     if not hinges:
         return
     inv_w = np.array([model.dof_invweight0[model.jnt_dofadr[model.joint(j.name).id]] for j in hinges])
+    solimp = [round(v, 6) for v in closure_impedance(p)]
     for j, tau in zip(hinges, closure_time_constants(p, inv_w), strict=True):
         j.solref_limit = [round(float(tau), 6), 1.0]
+        j.solimp_limit = solimp

@@ -220,11 +220,12 @@ class HingeSprings(_Replace):
         closure: how a hinge resists closing past its closure angle, where the faces of its
             cut meet (see :mod:`gripper.closure`):
 
-            - ``"teeth"`` (default): the silicone teeth on either side of the cut compress,
-              a rotational stiffness estimated from the finger geometry and Young's modulus
-              (:func:`gripper.closure.teeth_closure_stiffness`, 1.7 N·m/rad for the default
-              design). Independent of the time step, so grasp results are too.
-            - ``"stiffness"``: the same compliant stop with ``closure_stiffness``.
+            - ``"teeth"`` (default): the silicone teeth on either side of the cut are
+              squeezed, a neo-Hookean solid of the finger's Young's modulus: 1.72 N·m/rad for
+              the default design at small overrun, stiffening tenfold by 11.9° as the thin tips
+              are squashed (:mod:`gripper.closure`). Independent of the time step, so grasp
+              results are too.
+            - ``"stiffness"``: a linear compliant stop of ``closure_stiffness``.
             - ``"rigid"``: a hard stop as stiff as the time step allows (limit time constant
               four steps): the idealisation of paper 000's hinge chain. Its overrun grows as
               the step squared (0.3° at stall tension at 5e-4 s, 6° at 2 ms), so grasp

@@ -56,14 +56,14 @@ class GraspProtocol:
             (scripts/bench_trial.py). Force peaks are samples: read per step they were up to
             7.3 N higher on 100 rigid trials (README, "Grasp benchmark").
         timestep: simulation step of grasp trials [s]; replaces ``params.sim.timestep``. 2 ms,
-            with the ``discrete`` integrator: with the closed cuts a material spring
-            (:mod:`gripper.closure`), every library object gives the same outcome at 1, 2, 2.5
-            and 3 ms (two trials each; block and cylinder also at 0.5 ms). The peak total
-            force grows with the step, to first order: block 45.3 / 47.1 / 53.6 / 61.5 N and
-            cylinder 56.0 / 57.2 / 60.4 / 64.1 N at 0.5 / 1 / 2 / 3 ms (peaks read every
-            12 ms), so 2 ms is 8-18 % above 0.5 ms at a quarter of the cost; 3 ms would be
-            14-36 % above. (With the old rigid stop, whose overrun grows as the step squared,
-            the cylinder was held at 2 ms and dropped in the hold at 1 ms.)
+            with the ``discrete`` integrator: with the closed cuts the squeezed teeth
+            (:mod:`gripper.closure`), block and cylinder trials 0-3 and balloon, paper box and
+            bag trials 0-1 give the same outcome at 1 and 2 ms. The peak total force grows
+            with the step, to first order: block trial 0 61.0 / 63.8 / 67.0 N and cylinder
+            trial 1 65.1 / 67.2 / 73.3 N at 0.5 / 1 / 2 ms (read every 12 ms), so 2 ms is
+            10-13 % above 0.5 ms at a quarter of the cost. (With the old rigid stop, whose
+            overrun grows as the step squared, the cylinder was held at 2 ms and dropped in
+            the hold at 1 ms.)
     """
 
     settle_s: float = 0.3

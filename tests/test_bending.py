@@ -5,7 +5,12 @@ import pytest
 
 from gripper.bending import BendingConfig, run_bending_test
 from gripper.cli import main
-from gripper.closure import closure_stiffness, teeth_closure_stiffness
+from gripper.closure import (
+    realised_secant_stiffness,
+    teeth_closure_stiffness,
+    teeth_impedance,
+    teeth_moment,
+)
 from gripper.params import GripperParams
 
 
@@ -56,17 +61,33 @@ def test_cable_never_pushes(closing_run):
 
 
 def test_compliant_closure_is_the_teeth_spring():
-    """Past the closure angle the default stop is a spring of the teeth's stiffness: at rest, the
-    overrun times K_c carries what the cable's moment leaves over after the bridge spring."""
+    """Past the closure angle the default stop is the squeezed teeth: at rest, the limit's
+    moment (its realised secant stiffness times the overrun) carries what the cable's moment
+    leaves over after the bridge spring (2 %, the moment-balance tolerance), and that moment
+    follows the neo-Hookean teeth within 5 %, up to the 10° this sweep reaches."""
     p = _closing_design("teeth")
-    k = closure_stiffness(p)
-    assert k == pytest.approx(teeth_closure_stiffness(p.finger, p.material))
     res = run_bending_test(BendingConfig(mode="quasi_static", r_max=0.4, n_points=31), p)
     overrun = np.radians(res.joint_angles_deg - p.finger.closure_angle_deg)
     closed = res.limit_active & (overrun > np.radians(0.5))
-    assert closed.sum() > 20
+    assert closed.sum() > 20 and overrun.max() > np.radians(8.0)
     excess = (res.cable_moment_Nm - res.spring_moment_Nm)[closed]
-    assert np.abs(k * overrun[closed] / excess - 1.0).max() < 0.02
+    realised = realised_secant_stiffness(p, overrun[closed]) * overrun[closed]
+    assert np.abs(realised / excess - 1.0).max() < 0.02
+    teeth = np.array([teeth_moment(p.finger, p.material, th) for th in overrun[closed]])
+    assert np.abs(teeth / excess - 1.0).max() < 0.05
+
+
+def test_teeth_stiffen_as_they_are_squashed():
+    """Neo-Hookean teeth: K_c at small overrun, stiffer as the thin tips are squashed, and the
+    limit's impedance curve follows them within 20 % up to its width (ten times K_c)."""
+    p = GripperParams()
+    k0 = teeth_closure_stiffness(p.finger, p.material)
+    assert teeth_moment(p.finger, p.material, 1e-4) / 1e-4 == pytest.approx(k0, rel=1e-3)
+    width = teeth_impedance(p.finger, p.material)[2]
+    theta = np.linspace(0.02, 1.0, 25) * width
+    secant = np.array([teeth_moment(p.finger, p.material, th) / th for th in theta])
+    assert np.all(np.diff(secant) > 0) and secant[-1] == pytest.approx(10 * k0, rel=0.01)
+    assert np.abs(realised_secant_stiffness(p, theta) / secant - 1.0).max() < 0.2
 
 
 def test_quasi_static_moment_balance():
