@@ -17,7 +17,7 @@ modulus μ = E/3, σ = μ·(λ⁻² - λ), λ = 1 - ε, the moment is
 For small θ it is K_c·θ with K_c = E·width·∫ s²/t dz (:func:`teeth_closure_stiffness`, 1.72
 N·m/rad for the default design, 16× the bridge's own spring, paper 000: 0.109 N·m/rad); it
 stiffens as the thin tips of the teeth (3.6 mm at the grasping face) are squashed: twice as
-stiff at 8°, ten times at 11.9°. Left out: the faces' gradual contact from the grasping face
+stiff at 8°, five times at 11.2°, ten times at 11.9°. Left out: the faces' gradual contact from the grasping face
 down, and the tips bulging sideways; so it is good to a factor of about two.
 ``closure="stiffness"`` takes a measured linear stiffness instead.
 
@@ -31,10 +31,14 @@ of secant stiffness
 R·f = aref with R = (1-d)/d·A and aref = -k·d·r, k = 1/(d1·tau)² (MuJoCo's soft-constraint
 definitions; R is diagonal, so this holds whichever other limits are active). Each hinge's tau
 sets K at zero overrun to K_c; the impedance curve, the same for every hinge, follows the
-teeth's stiffening from d0 = 0.999 to d1 = 0.9999 (MuJoCo's cap): a tenfold rise, fitted by
-least squares to M(θ)/θ (:func:`teeth_impedance`). Past ``width`` the stop stays at ten times
-K_c. The same limit holds the small extension stop. All of it is a property of the silicone,
-so it does not change with the time step, and neither do grasp results (README, "Closed cuts
+teeth's stiffening from d0 = 0.9995 to d1 = 0.9999 (MuJoCo's cap): a fivefold rise, fitted by
+least squares to M(θ)/θ (:func:`teeth_impedance`). Past ``width`` (11.2°) the stop stays at five
+times K_c; the stall's excess moment (about 0.49 N·m) is met at about 8.5°, inside the curve.
+d0 = 0.9995 is the rigid stop's impedance: with d0 = 0.999 (a tenfold rise) one balloon trial
+of fifty snapped (a fingertip jumped 14° within 40 ms, 377 N on the balloon) and three more
+burst; on those four trials d0 = 0.9995 gave no snap (at most 14 N) and two bursts (strain 0.28
+and 0.30, the limit is 0.25). The same limit holds the small extension stop. All of it is a
+property of the silicone, so it does not change with the time step, and neither do grasp results (README, "Closed cuts
 and the time step").
 
 Example:
@@ -64,8 +68,8 @@ MIN_STEPS = 4.0
 # Impedance of the rigid stop and of a linear closure stiffness (constant over the violation).
 HINGE_LIMIT_IMPEDANCE = 0.9995
 # Impedance range of the teeth's stiffening stop: d0 sets the softest, d1 (MuJoCo's cap) the
-# stiffest; G(d1)/G(d0) = 10 with G(d) = d²/(1-d).
-TEETH_IMPEDANCE = (0.999, 0.9999)
+# stiffest; G(d1)/G(d0) = 5.0 with G(d) = d²/(1-d) (see the module docstring for why not 10).
+TEETH_IMPEDANCE = (HINGE_LIMIT_IMPEDANCE, 0.9999)
 # Strain at which a tooth counts as squashed flat (the neo-Hookean stress diverges at 1).
 MAX_TOOTH_STRAIN = 0.999
 
@@ -116,7 +120,11 @@ def teeth_impedance(g: FingerGeometry, material: Material) -> tuple[float, float
     d0, d1 = TEETH_IMPEDANCE
     k0 = teeth_closure_stiffness(g, material)
     top = _g(d1) / _g(d0)
-    width = brentq(lambda th: teeth_moment(g, material, th) / (th * k0) - top, 1e-4, 1.5)
+    # The overrun at which the first point of a tooth would be squashed flat: the secant
+    # stiffness passes any bound below it.
+    z = np.linspace(g.bridge_thickness, g.height, 401)[1:]
+    lock = float(np.min(np.vectorize(_tooth(g))(z) / (z - g.hinge_z)))
+    width = brentq(lambda th: teeth_moment(g, material, th) / (th * k0) - top, 1e-4 * lock, lock)
     theta = np.linspace(width / 50, width, 50)
     ratio = np.array([teeth_moment(g, material, th) / (th * k0) for th in theta])
     d_target = np.array([brentq(lambda d, r=r: _g(d) - r * _g(d0), d0, d1) for r in np.minimum(ratio, top)])

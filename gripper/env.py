@@ -205,9 +205,9 @@ class SoftGripperGraspEnv(gym.Env):
     - v0, package 0.4.0: sparse constraint Jacobian and no constraint islands (the same problem,
       other rounding), the bag's pack touches its film stiffly. Spaces, rewards and episode rules
       are unchanged, but episodes are not bitwise those of 0.3.0 for the same seed.
-    - v0, package 0.5.0: a closed cut is a spring of the silicone teeth (1.72 N·m/rad,
-      ``springs.closure``), no longer a hard stop whose give grew with the step: fingers closed
-      at the servo's stall wrap further and press less. Spaces, rewards and episode rules are
+    - v0, package 0.5.0: a closed cut is the squeezed silicone teeth (1.72 N·m/rad at small
+      overrun, stiffening, ``springs.closure``), no longer a hard stop whose give grew with the
+      step: fingers closed at the servo's stall wrap a little further. Spaces, rewards and episode rules are
       unchanged; episodes differ from 0.4.x for the same seed.
 
     Example:

@@ -222,7 +222,7 @@ class HingeSprings(_Replace):
 
             - ``"teeth"`` (default): the silicone teeth on either side of the cut are
               squeezed, a neo-Hookean solid of the finger's Young's modulus: 1.72 N·m/rad for
-              the default design at small overrun, stiffening tenfold by 11.9° as the thin tips
+              the default design at small overrun, stiffening fivefold by 11.2° as the thin tips
               are squashed (:mod:`gripper.closure`). Independent of the time step, so grasp
               results are too.
             - ``"stiffness"``: a linear compliant stop of ``closure_stiffness``.
@@ -231,7 +231,8 @@ class HingeSprings(_Replace):
               the step squared (0.3° at stall tension at 5e-4 s, 6° at 2 ms), so grasp
               results then depend on the step.
         closure_stiffness: rotational stiffness of a closed cut [N·m/rad], used only when
-            ``closure == "stiffness"``.
+            ``closure == "stiffness"``. The default 1.0 is a placeholder of the teeth
+            estimate's order; set it from a measurement.
     """
 
     stiffness: tuple[float, ...] = (PAPER_HINGE_STIFFNESS,)

@@ -79,14 +79,14 @@ def test_compliant_closure_is_the_teeth_spring():
 
 def test_teeth_stiffen_as_they_are_squashed():
     """Neo-Hookean teeth: K_c at small overrun, stiffer as the thin tips are squashed, and the
-    limit's impedance curve follows them within 20 % up to its width (ten times K_c)."""
+    limit's impedance curve follows them within 20 % up to its width (five times K_c)."""
     p = GripperParams()
     k0 = teeth_closure_stiffness(p.finger, p.material)
     assert teeth_moment(p.finger, p.material, 1e-4) / 1e-4 == pytest.approx(k0, rel=1e-3)
     width = teeth_impedance(p.finger, p.material)[2]
     theta = np.linspace(0.02, 1.0, 25) * width
     secant = np.array([teeth_moment(p.finger, p.material, th) / th for th in theta])
-    assert np.all(np.diff(secant) > 0) and secant[-1] == pytest.approx(10 * k0, rel=0.01)
+    assert np.all(np.diff(secant) > 0) and secant[-1] == pytest.approx(5 * k0, rel=0.01)
     assert np.abs(realised_secant_stiffness(p, theta) / secant - 1.0).max() < 0.2
 
 
