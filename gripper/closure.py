@@ -38,8 +38,8 @@ d0 = 0.9995 is the rigid stop's impedance: with d0 = 0.999 (a tenfold rise) one 
 of fifty snapped (a fingertip jumped 14° within 40 ms, 377 N on the balloon) and three more
 burst; on those four trials d0 = 0.9995 gave no snap (at most 14 N) and two bursts (strain 0.28
 and 0.30, the limit is 0.25). The same limit holds the small extension stop. All of it is a
-property of the silicone, so it does not change with the time step, and neither do grasp results (README, "Closed cuts
-and the time step").
+property of the silicone, so it does not change with the time step, and neither do grasp
+results (README, "Closed cuts and the time step").
 
 Example:
     >>> from gripper.params import GripperParams
