@@ -59,11 +59,11 @@ class GraspProtocol:
             with the ``discrete`` integrator: with the closed cuts the squeezed teeth
             (:mod:`gripper.closure`), block and cylinder trials 0-3 and balloon, paper box and
             bag trials 0-1 give the same outcome at 1 and 2 ms. The peak total force grows
-            with the step, to first order: block trial 0 61.0 / 63.8 / 67.0 N and cylinder
-            trial 1 65.1 / 67.2 / 73.3 N at 0.5 / 1 / 2 ms (read every 12 ms), so 2 ms is
-            10-13 % above 0.5 ms at a quarter of the cost. (With the old rigid stop, whose
-            overrun grows as the step squared, the cylinder was held at 2 ms and dropped in
-            the hold at 1 ms.)
+            with the step, to first order: block trial 0 60.8 / 63.5 / 66.6 / 71.7 N and
+            cylinder trial 1 64.9 / 67.2 / 73.3 / 80.9 N at 0.5 / 1 / 2 / 3 ms (read every
+            12 ms), so 2 ms is 10-13 % above 0.5 ms at a quarter of the cost; 3 ms 18-25 %.
+            (With the old rigid stop, whose overrun grows as the step squared, the cylinder
+            was held at 2 ms and dropped in the hold at 1 ms.)
     """
 
     settle_s: float = 0.3
