@@ -143,7 +143,7 @@ class _Probe:
         tension = d.sensordata[self.tension]
         base_R = d.xmat[self.base_body].reshape(3, 3)
         tip = base_R.T @ (d.site_xpos[self.tip_site] - d.xpos[self.base_body])
-        ten_j = d.ten_J.reshape(self.m.ntendon, self.m.nv)[self.cable_id, self.hinge_dof]
+        ten_j = _cable_jacobian(self.m, d, self.cable_id)[self.hinge_dof]
         cable_moment = -tension * ten_j
         spring_moment = self.stiffness * (q - self.springref)
         at_limit = np.zeros(len(q), dtype=bool)
@@ -151,6 +151,16 @@ class _Probe:
             if d.efc_type[i] == mujoco.mjtConstraint.mjCNSTR_LIMIT_JOINT:
                 at_limit |= self.hinge_ids == d.efc_id[i]
         return q, r, tension, tip, spring_moment, cable_moment, at_limit
+
+
+def _cable_jacobian(m: mujoco.MjModel, d: mujoco.MjData, tendon_id: int) -> np.ndarray:
+    """Row ``tendon_id`` of the tendon Jacobian, dense (MuJoCo stores it sparse in sparse models)."""
+    if mujoco.mj_isSparse(m):
+        adr, nnz = m.ten_J_rowadr[tendon_id], m.ten_J_rownnz[tendon_id]
+        row = np.zeros(m.nv)
+        row[m.ten_J_colind[adr:adr + nnz]] = d.ten_J[adr:adr + nnz]
+        return row
+    return d.ten_J.reshape(m.ntendon, m.nv)[tendon_id]
 
 
 def run_bending_test(config: BendingConfig | None = None,

@@ -33,13 +33,17 @@ definitions; R is diagonal, so this holds whichever other limits are active). Ea
 sets K at zero overrun to K_c; the impedance curve, the same for every hinge, follows the
 teeth's stiffening from d0 = 0.9995 to d1 = 0.9999 (MuJoCo's cap): a fivefold rise, fitted by
 least squares to M(θ)/θ (:func:`teeth_impedance`). Past ``width`` (11.2°) the stop stays at five
-times K_c; the stall's excess moment (about 0.49 N·m) is met at about 8.5°, inside the curve.
+times K_c, and at 12.4°, where the tips of the teeth are squashed flat (:func:`teeth_lock_angle`),
+a rigid stop (a fixed tendon's limit, as stiff as the step allows) takes over: without it, a
+random-command rollout of six 12-element fingers, whipped by the stage into their closed cuts at
+up to 100 rad/s, went unstable (MuJoCo BADQACC at 1.25 s). The stall's excess moment (about 0.49 N·m)
+is met at about 8.5°, inside the curve.
 d0 = 0.9995 is the rigid stop's impedance: with d0 = 0.999 (a tenfold rise) one balloon trial
 of fifty snapped (a fingertip jumped 14° within 40 ms, 377 N on the balloon) and three more
 burst; on those four trials d0 = 0.9995 gave no snap (at most 14 N) and two bursts (strain 0.28
-and 0.30, the limit is 0.25). The same limit holds the small extension stop. All of it is a
-property of the silicone, so it does not change with the time step, and neither do grasp
-results (README, "Closed cuts and the time step").
+and 0.30, the limit is 0.25). The extension stop is rigid, on the same tendon as the lock.
+The compliant stop is a property of the silicone, so it does not change with the time step,
+and neither do grasp results (README, "Closed cuts and the time step").
 
 Example:
     >>> from gripper.params import GripperParams
@@ -102,6 +106,14 @@ def teeth_moment(g: FingerGeometry, material: Material, overrun: float) -> float
     return g.width * moment
 
 
+def teeth_lock_angle(g: FingerGeometry) -> float:
+    """Overrun past closure at which the first point of a tooth is squashed flat, min t/s [rad]
+    (12.4° for the default design, at the grasping face). The model's hinges stop rigidly there
+    (:func:`gripper.model.add_finger`)."""
+    z = np.linspace(g.bridge_thickness, g.height, 401)[1:]
+    return float(np.min(np.vectorize(_tooth(g))(z) / (z - g.hinge_z)))
+
+
 def _g(d):
     return d * d / (1.0 - d)
 
@@ -120,10 +132,7 @@ def teeth_impedance(g: FingerGeometry, material: Material) -> tuple[float, float
     d0, d1 = TEETH_IMPEDANCE
     k0 = teeth_closure_stiffness(g, material)
     top = _g(d1) / _g(d0)
-    # The overrun at which the first point of a tooth would be squashed flat: the secant
-    # stiffness passes any bound below it.
-    z = np.linspace(g.bridge_thickness, g.height, 401)[1:]
-    lock = float(np.min(np.vectorize(_tooth(g))(z) / (z - g.hinge_z)))
+    lock = teeth_lock_angle(g)  # the secant stiffness passes any bound below it
     width = brentq(lambda th: teeth_moment(g, material, th) / (th * k0) - top, 1e-4 * lock, lock)
     theta = np.linspace(width / 50, width, 50)
     ratio = np.array([teeth_moment(g, material, th) / (th * k0) for th in theta])

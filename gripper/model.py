@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from gripper.closure import HINGE_LIMIT_IMPEDANCE, MIN_STEPS, tune_closure_limits
+from gripper.closure import HINGE_LIMIT_IMPEDANCE, MIN_STEPS, teeth_lock_angle, tune_closure_limits
 from gripper.geometry import (
     cable_line_z,
     cable_via_points,
@@ -57,6 +57,9 @@ REEL_DEPTH = 0.010
 # Touch-pad sites: thickness of the sensing slab on each grasping face [m]; it must hold the
 # contact points of a few millimetres of penetration.
 PAD_HALF_THICKNESS = 0.0025
+# Lower end of each hinge joint's own range [rad]: out of reach, the extension stop is a tendon
+# (and the upper end of that tendon's range where no lock applies).
+EXTENSION_JOINT_RANGE = math.pi / 2
 # Cable (tendon) limit constraint: impedance at the limit. 0.99 keeps the rope's stretch small.
 CABLE_SOLIMP = (0.99, 0.99, 0.001, 0.5, 2.0)
 
@@ -163,10 +166,23 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
             # their convex hulls must not collide (MuJoCo's parent filter skips world-welded
             # parents, so exclude explicitly).
             spec.add_exclude(bodyname1=body.name, bodyname2=seg.name)
-            seg.add_joint(defaults["hinge"], name=f"{prefix}_hinge{j}", pos=[0, 0, g.hinge_z],
-                          range=[-g.extension_limit_deg * DEG, g.closure_angle_deg * DEG],
+            # The joint's own limit is the closed cut (its upper end; the lower end is out of
+            # reach). The rigid stops are a one-joint fixed tendon with its own limit: extension
+            # at its lower end, the squashed teeth's lock at its upper end (gripper.closure).
+            # MuJoCo gives a joint limit one solref/solimp for both ends, and the cut's
+            # compliant stop must not soften the extension stop.
+            hinge_name = f"{prefix}_hinge{j}"
+            seg.add_joint(defaults["hinge"], name=hinge_name, pos=[0, 0, g.hinge_z],
+                          range=[-EXTENSION_JOINT_RANGE, g.closure_angle_deg * DEG],
                           stiffness=[stiff[i - 1], 0, 0], damping=[damp[i - 1], 0, 0],
                           springref=rest[i - 1] * DEG)
+            lock = g.closure_angle_deg * DEG + teeth_lock_angle(g) if p.springs.closure == "teeth" \
+                else EXTENSION_JOINT_RANGE
+            stop = spec.add_tendon(name=f"{hinge_name}_stops", limited=mujoco.mjtLimited.mjLIMITED_TRUE,
+                                   range=[-g.extension_limit_deg * DEG, lock])
+            stop.wrap_joint(hinge_name, 1.0)
+            stop.solref_limit = [MIN_STEPS * p.sim.timestep, 1.0]
+            stop.solimp_limit = [HINGE_LIMIT_IMPEDANCE, HINGE_LIMIT_IMPEDANCE, 0.001, 0.5, 2.0]
         seg.add_geom(defaults["visual"], name=f"{prefix}_seg{j}_visual",
                      type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}",
                      rgba=list(SILICONE_RGBA))

@@ -1,8 +1,10 @@
 import mujoco
 import pytest
 
+from gripper.closure import teeth_lock_angle
 from gripper.menagerie import REPO_MODELS, generate_model_files, readme_with_table
-from gripper.params import GripperParams
+from gripper.model import build_scene_spec
+from gripper.params import DEG, GripperParams
 from gripper.smoke import random_control_rollout
 
 
@@ -17,7 +19,9 @@ def test_committed_models_match_fresh_generation():
 
 def test_committed_scene_loads():
     m = mujoco.MjModel.from_xml_path(str(REPO_MODELS / "scene.xml"))
-    assert m.nu == 7 and m.ntendon == 4
+    # 4 cables (spatial) and one stop tendon (fixed) per hinge: 4 fingers x 5 hinges
+    assert m.nu == 7 and m.ntendon == 4 + 20
+    assert sum(m.tendon(i).name.endswith("_cable") for i in range(m.ntendon)) == 4
     names = [m.sensor(i).name for i in range(m.nsensor)]
     assert "f0_cable_tension" in names and "f3_seg6_pad" in names
 
@@ -30,3 +34,17 @@ def test_scene_steps_without_warnings(n_fingers, n_segments):
                   layout=p.layout.replace(n_fingers=n_fingers))
     res = random_control_rollout(p, duration=2.0, seed=n_fingers * 100 + n_segments)
     assert res["steps"] == 2000  # raises SimulationUnstable on any warning / NaN
+
+
+def test_squashed_teeth_lock_holds_whipped_long_fingers():
+    """Random stage commands whip 12-element fingers: hinges hit their closed cuts at 100 rad/s.
+    Past the teeth's lock angle (tips squashed flat) a rigid stop takes over; without it this
+    rollout blew up (MuJoCo BADQACC at 1.25 s)."""
+    p = GripperParams()
+    p = p.replace(finger=p.finger.replace(n_segments=12), layout=p.layout.replace(n_fingers=6))
+    assert random_control_rollout(p, duration=2.0, seed=2)["steps"] == 2000
+    m = build_scene_spec(p).compile()
+    stop = m.tendon("f0_hinge2_stops").id
+    lock = p.finger.closure_angle_deg * DEG + teeth_lock_angle(p.finger)
+    assert m.tendon_range[stop] == pytest.approx([-p.finger.extension_limit_deg * DEG, lock])
+    assert m.tendon_solref_lim[stop, 0] == pytest.approx(4 * p.sim.timestep)
