@@ -150,7 +150,7 @@ RIGID_CLOSE = 3.0
 # g/cm³ × ~0.5 effective fill). Silicone on PLA μ ≈ 0.6 (silicone on smooth plastics 0.5-0.8).
 # Rigid parts take the servo's stall: their damage measure is the peak total contact force, with a
 # limit (200 N) above what four 54 N cables press through fingers closed on their cut stops
-# (peak totals up to 97 N in the 50-trial benchmark of 0.5.0, block and cylinder); a plastic part
+# (peak totals up to 100 N in the 50-trial benchmark of 0.5.0, block and cylinder); a plastic part
 # of this size fails at kilonewtons.
 BLOCK = GraspObject(
     name="block", kind="rigid_box", size=(0.020, 0.020, 0.030), mass=0.060, friction=0.6,

@@ -93,7 +93,7 @@ def main() -> None:
     rt5 = [r["sim_time_s"] / r["wall_time_s"] for r in trial]
     print(f"  benchmark block trials (index 0-{args.repeats - 1}, closed to stall): median "
           f"{statistics.median(rt5):.1f}x real time (runs: {', '.join(f'{x:.1f}' for x in rt5)})")
-    # Not the default: same grasp outcomes, but peak forces 18-25 % above the 0.5 ms values
+    # Not the default: same grasp outcomes, but peak forces 11-24 % above the 0.5 ms values
     # (GraspProtocol.timestep).
     p3 = p.replace(sim=p.sim.replace(timestep=0.003))
     rt4 = [grasp_rollout_batch(p3, discrete=True) for _ in range(args.repeats)]

@@ -109,7 +109,7 @@ def test_closing_much_harder_damages_deformable_objects(name, hard_scale, card):
     default, stall tension on the cables) bursts the balloon (membrane strain above 0.25) and
     dents the box (permanent dent beyond 2 mm after spring-back). The box is of thinner card
     (0.12 mm), so that the check does not hinge on the default 0.2 mm box, whose dent at stall
-    on this trial (2.3 mm) lies near the limit."""
+    on this trial (2.4 mm) lies near the limit."""
     obj = get_object(name)
     if card is not None:
         obj = dataclasses.replace(obj, thickness=card)
