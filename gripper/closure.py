@@ -17,9 +17,9 @@ modulus μ = E/3, σ = μ·(λ⁻² - λ), λ = 1 - ε, the moment is
 For small θ it is K_c·θ with K_c = E·width·∫ s²/t dz (:func:`teeth_closure_stiffness`, 1.72
 N·m/rad for the default design, 16× the bridge's own spring, paper 000: 0.109 N·m/rad); it
 stiffens as the thin tips of the teeth (3.6 mm at the grasping face) are squashed: twice as
-stiff at 8°, five times at 11.2°, ten times at 11.9°. Left out: the faces' gradual contact from the grasping face
-down, and the tips bulging sideways; so it is good to a factor of about two.
-``closure="stiffness"`` takes a measured linear stiffness instead.
+stiff at 8°, five times at 11.2°, ten times at 11.9°. Left out: the faces' gradual contact
+from the grasping face down, and the tips bulging sideways; so it is good to a factor of about
+two. ``closure="stiffness"`` takes a measured linear stiffness instead.
 
 **As a MuJoCo limit.** A soft limit of time constant tau, damping ratio 1 and impedance d(r)
 (solimp: d rising from d0 to d1 over the violation ``width``) holds a static load as a spring
@@ -32,18 +32,20 @@ R·f = aref with R = (1-d)/d·A and aref = -k·d·r, k = 1/(d1·tau)² (MuJoCo's
 definitions; R is diagonal, so this holds whichever other limits are active). Each hinge's tau
 sets K at zero overrun to K_c; the impedance curve, the same for every hinge, follows the
 teeth's stiffening from d0 = 0.9995 to d1 = 0.9999 (MuJoCo's cap): a fivefold rise, fitted by
-least squares to M(θ)/θ (:func:`teeth_impedance`). Past ``width`` (11.2°) the stop stays at five
-times K_c, and at 12.4°, where the tips of the teeth are squashed flat (:func:`teeth_lock_angle`),
-a rigid stop (a fixed tendon's limit, as stiff as the step allows) takes over: without it, a
-random-command rollout of six 12-element fingers, whipped by the stage into their closed cuts at
-up to 100 rad/s, went unstable (MuJoCo BADQACC at 1.25 s). The stall's excess moment (about 0.49 N·m)
-is met at about 8.5°, inside the curve.
+least squares to M(θ)/θ (:func:`teeth_impedance`). Past ``width`` (11.2°) the stop stays at
+five times K_c, and at 12.4°, where the tips of the teeth are squashed flat
+(:func:`teeth_lock_angle`), a rigid stop (a fixed tendon's limit, as stiff as the step allows)
+takes over: without it, a random-command rollout of six 12-element fingers, whipped by the
+stage into their closed cuts at up to 100 rad/s, went unstable (MuJoCo BADQACC at 1.25 s). The
+stall's excess moment (about 0.49 N·m) is met at about 8.5°, inside the curve.
+
 d0 = 0.9995 is the rigid stop's impedance: with d0 = 0.999 (a tenfold rise) one balloon trial
 of fifty snapped (a fingertip jumped 14° within 40 ms, 377 N on the balloon) and three more
-burst; on those four trials d0 = 0.9995 gave no snap (at most 14 N) and two bursts (strain 0.28
-and 0.30, the limit is 0.25). The extension stop is rigid, on the same tendon as the lock.
-The compliant stop is a property of the silicone, so it does not change with the time step,
-and neither do grasp results (README, "Closed cuts and the time step").
+burst; with 0.9995 no trial snapped, two burst mildly (strain 0.28 and 0.30, limit 0.25), and
+none once the extension stop was made rigid too. The extension stop is rigid, on the same
+tendon as the lock: the proximal hinges of a finger pressing a balloon sit on it. The
+compliant stop is a property of the silicone, so it does not change with the time step, and
+neither do grasp results (README, "Closed cuts and the time step").
 
 Example:
     >>> from gripper.params import GripperParams
