@@ -73,6 +73,7 @@ from gripper.params import DEG, FingerGeometry, GripperParams, Material
 MIN_STEPS = 4.0
 # Impedance of the rigid stop and of a linear closure stiffness (constant over the violation).
 HINGE_LIMIT_IMPEDANCE = 0.9995
+RIGID_STOP_SOLIMP = (HINGE_LIMIT_IMPEDANCE, HINGE_LIMIT_IMPEDANCE, 0.001, 0.5, 2.0)
 # Impedance range of the teeth's stiffening stop: d0 sets the softest, d1 (MuJoCo's cap) the
 # stiffest; G(d1)/G(d0) = 5.0 with G(d) = d²/(1-d) (see the module docstring for why not 10).
 TEETH_IMPEDANCE = (HINGE_LIMIT_IMPEDANCE, 0.9999)
@@ -113,7 +114,7 @@ def teeth_lock_angle(g: FingerGeometry) -> float:
     (12.4° for the default design, at the grasping face). The model's hinges stop rigidly there
     (:func:`gripper.model.add_finger`)."""
     z = np.linspace(g.bridge_thickness, g.height, 401)[1:]
-    return float(np.min(np.vectorize(_tooth(g))(z) / (z - g.hinge_z)))
+    return float(np.min(_tooth(g)(z) / (z - g.hinge_z)))
 
 
 def _g(d):
@@ -159,8 +160,7 @@ def closure_impedance(p: GripperParams) -> tuple[float, float, float, float, flo
     """The hinge limits' ``solimp``: the teeth's stiffening curve, or constant for the others."""
     if p.springs.closure == "teeth":
         return teeth_impedance(p.finger, p.material)
-    d = HINGE_LIMIT_IMPEDANCE
-    return d, d, 0.001, 0.5, 2.0
+    return RIGID_STOP_SOLIMP
 
 
 def realised_secant_stiffness(p: GripperParams, overrun) -> np.ndarray:

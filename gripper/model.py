@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from gripper.closure import HINGE_LIMIT_IMPEDANCE, MIN_STEPS, teeth_lock_angle, tune_closure_limits
+from gripper.closure import MIN_STEPS, RIGID_STOP_SOLIMP, teeth_lock_angle, tune_closure_limits
 from gripper.geometry import (
     cable_line_z,
     cable_via_points,
@@ -119,14 +119,19 @@ def _add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.Mjs
     # smoke runs of 12-element fingers at 1 ms, as did a two-step time constant.
     # This is the rigid stop (springs.closure = "rigid"); the default compliant closure sets each
     # hinge's time constant from the teeth's stiffness instead (gripper.closure).
-    hinge.joint.solref_limit = [MIN_STEPS * p.sim.timestep, 1.0]
-    d = HINGE_LIMIT_IMPEDANCE
-    hinge.joint.solimp_limit = [d, d, 0.001, 0.5, 2.0]
+    _set_rigid_stop(hinge.joint, p)
     pad = spec.add_default("pad", root)
     pad.site.type = mujoco.mjtGeom.mjGEOM_BOX
     pad.site.group = 4
     pad.site.rgba = [0.1, 0.8, 0.1, 0.3]
     return {"root": root, "visual": visual, "collision": collision, "hinge": hinge, "pad": pad}
+
+
+def _set_rigid_stop(owner, p: GripperParams) -> None:
+    """A limit as stiff as the step allows (``MIN_STEPS`` steps, impedance 0.9995) on a joint
+    default or a tendon."""
+    owner.solref_limit = [MIN_STEPS * p.sim.timestep, 1.0]
+    owner.solimp_limit = list(RIGID_STOP_SOLIMP)
 
 
 def _add_element_meshes(spec: mujoco.MjSpec, p: GripperParams) -> None:
@@ -156,6 +161,9 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
                    range=[-0.002, p.servo.datasheet.travel * p.servo.spool_radius + 0.002])
     reel.add_site(name=f"{prefix}_reel_site", size=[0.001] * 3)
 
+    # Upper end of each hinge's rigid stop tendon: the squashed teeth's lock, or out of reach.
+    lock = (g.closure_angle_deg * DEG + teeth_lock_angle(g) if p.springs.closure == "teeth"
+            else EXTENSION_JOINT_RANGE)
     body = mount
     for i in range(g.n_segments):
         kind = element_kind(i, g.n_segments)
@@ -176,13 +184,10 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
                           range=[-EXTENSION_JOINT_RANGE, g.closure_angle_deg * DEG],
                           stiffness=[stiff[i - 1], 0, 0], damping=[damp[i - 1], 0, 0],
                           springref=rest[i - 1] * DEG)
-            lock = g.closure_angle_deg * DEG + teeth_lock_angle(g) if p.springs.closure == "teeth" \
-                else EXTENSION_JOINT_RANGE
             stop = spec.add_tendon(name=f"{hinge_name}_stops", limited=mujoco.mjtLimited.mjLIMITED_TRUE,
                                    range=[-g.extension_limit_deg * DEG, lock])
             stop.wrap_joint(hinge_name, 1.0)
-            stop.solref_limit = [MIN_STEPS * p.sim.timestep, 1.0]
-            stop.solimp_limit = [HINGE_LIMIT_IMPEDANCE, HINGE_LIMIT_IMPEDANCE, 0.001, 0.5, 2.0]
+            _set_rigid_stop(stop, p)
         seg.add_geom(defaults["visual"], name=f"{prefix}_seg{j}_visual",
                      type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}",
                      rgba=list(SILICONE_RGBA))
