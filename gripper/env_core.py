@@ -397,6 +397,15 @@ class BatchStepper:
         self.nthread = nthread
         self.roll = rollout.Rollout(nthread=nthread)
         self._scratch: dict[tuple, list[mujoco.MjData]] = {}
+        self._counters: dict[tuple, list[np.ndarray]] = {}
+
+    def _warning_counters(self, datas: list[mujoco.MjData]) -> list[np.ndarray]:
+        """Views of each scratch data's warning counters (made once: the view costs more than
+        reading it)."""
+        key = tuple(id(d) for d in datas)
+        if key not in self._counters:
+            self._counters[key] = [d.warning.number for d in datas]
+        return self._counters[key]
 
     def _datas(self, scene: Scene) -> list[mujoco.MjData]:
         key = scene.signature()
@@ -407,24 +416,28 @@ class BatchStepper:
     def _run(self, eps, ctrls, datas):
         n, k = len(eps), eps[0].scene.cfg.frame_skip
         s0 = np.stack([state_vector(ep) for ep in eps])
-        u = np.repeat(np.stack(ctrls)[:, None, :], k, axis=1)
+        new = np.stack(ctrls)
+        u = np.repeat(new[:, None, :], k, axis=1)
         # palm stages: first-order hold, the set-point ramps from the last one to the new one over
-        # the control period (a stage's trajectory generator); a jump would jerk the stiff stage
+        # the control period (a stage's trajectory generator); a jump would jerk the stiff stage.
+        # Scenes of one size signature come from one config, so their lift actuators coincide.
+        lift = eps[0].scene.lift_act_ids
+        if any(ep.scene.lift_act_ids is not lift and not np.array_equal(ep.scene.lift_act_ids, lift)
+               for ep in eps):
+            raise ValueError("batch: episodes with different lift actuators cannot share a rollout")
         ramp = (np.arange(1, k + 1) / k)[None, :, None]
-        for j, ep in enumerate(eps):
-            lift = ep.scene.lift_act_ids
-            prev = ep.data.ctrl[lift]
-            u[j, :, lift] = (prev[None, :] + ramp[0] * (ctrls[j][lift] - prev)[None, :]).T
-        u = np.ascontiguousarray(u)
+        prev = np.stack([ep.data.ctrl for ep in eps])[:, lift]
+        u[:, :, lift] = prev[:, None, :] + ramp * (new[:, lift] - prev)[:, None, :]
         warm = np.zeros((n, eps[0].scene.model.nv))
         state = np.empty((n, k, s0.shape[1]))
         sens = np.empty((n, k, eps[0].scene.model.nsensordata))
-        for d in datas:
-            d.warning.number[:] = 0  # counters read after the rollout
+        counters = self._warning_counters(datas)
+        for c in counters:
+            c[:] = 0  # read after the rollout
         self.roll.rollout([ep.scene.model for ep in eps], datas, s0, u, control_spec=CTRL_SPEC,
                           skip_checks=True, nstep=k, initial_warmstart=warm, state=state,
                           sensordata=sens, chunk_size=1)
-        warned = any(int(d.warning.number.sum()) for d in datas)
+        warned = any(c.any() for c in counters)
         # MuJoCo resets a diverging simulation (time back to 0) after its warning: the clock
         # tells, per episode, even where the per-thread warning counters cannot
         dt = eps[0].scene.model.opt.timestep

@@ -3,7 +3,10 @@ a rigid block (scripted descend-close-lift, 3 s simulated, servos to 2 rad) on o
 model's default 1 ms step and at the grasp trials' 2 ms step (discrete integrator, see
 GraspProtocol.timestep), and the benchmark's own block trials (servos to stall).
 
-Run: .venv/bin/python scripts/bench_speed.py [--repeats 5]
+Run: .venv/bin/python scripts/bench_speed.py [--repeats 5] [--knobs]
+
+``--knobs`` times, side by side with the shipped model, the simulation options and model cuts
+tried against the 50x goal (see the README, "Speed").
 """
 
 import argparse
@@ -66,9 +69,115 @@ def grasp_rollout_batch(p: GripperParams, sim_time: float = 3.0, discrete: bool 
     return sim_time / wall
 
 
+PHASES = ("STEP", "POS_KINEMATICS", "POS_INERTIA", "COL_BROAD", "COL_NARROW", "POS_MAKE",
+          "VELOCITY", "ACTUATION", "CONSTRAINT", "ADVANCE")
+
+
+def phase_breakdown(p: GripperParams) -> None:
+    """Where a step of the scripted grasp (2 ms, discrete) goes: MuJoCo's own timers, per step."""
+    m = _scene(p, discrete=True)
+    d = mujoco.MjData(m)
+    u = _scripted_controls(p, m, 3.0)
+    ncon = nefc = iters = 0
+    for row in u:
+        d.ctrl[:] = row
+        mujoco.mj_step(m, d)
+        ncon, nefc, iters = ncon + d.ncon, nefc + d.nefc, iters + int(d.solver_niter[0])
+    n = len(u)
+    parts = []
+    for name in PHASES:
+        t = d.timer[int(getattr(mujoco.mjtTimer, f"mjTIMER_{name}"))]
+        parts.append(f"{name.lower()} {1e6 * t.duration / max(t.number, 1):.1f}")
+    print(f"  per step (us): {', '.join(parts)}; mean {ncon / n:.1f} contacts, {nefc / n:.1f} "
+          f"constraint rows, {iters / n:.2f} solver iterations")
+
+
+def _variant(p: GripperParams, change) -> mujoco.MjModel:
+    spec = build_scene_spec(p)
+    spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
+    change(spec)
+    return spec.compile()
+
+
+def _drop_visual_geoms(spec: mujoco.MjSpec) -> None:
+    for g in list(spec.geoms):
+        if g.name.endswith("_visual"):
+            spec.delete(g)
+
+
+def _exclude_same_finger(spec: mujoco.MjSpec) -> None:
+    names = [b.name for b in spec.bodies if "_seg" in b.name]
+    for a in names:
+        for b in names:
+            fa, fb = a.split("_seg"), b.split("_seg")
+            if a < b and fa[0] == fb[0] and abs(int(fa[1]) - int(fb[1])) >= 2:
+                spec.add_exclude(bodyname1=a, bodyname2=b)
+
+
+def _islands_on(spec: mujoco.MjSpec) -> None:
+    spec.option.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_ISLAND)
+
+
+def _set(attr, value):
+    def change(spec):
+        setattr(spec.option, attr, value)
+    return change
+
+
+def _flag(bit):
+    def change(spec):
+        spec.option.disableflags |= int(bit)
+    return change
+
+
+# Simulation options and model cuts tried against the 50x goal, each measured side by side with
+# the shipped model in one run (none is shipped: see the README, "Speed").
+KNOBS = {
+    "pyramidal friction cones": _set("cone", mujoco.mjtCone.mjCONE_PYRAMIDAL),
+    "dense constraint Jacobian": _set("jacobian", mujoco.mjtJacobian.mjJAC_DENSE),
+    "CG solver": _set("solver", mujoco.mjtSolver.mjSOL_CG),
+    "solver tolerance 1e-6": _set("tolerance", 1e-6),
+    "no multi-point CCD": _flag(mujoco.mjtDisableBit.mjDSBL_MULTICCD),
+    "constraint islands on": _islands_on,
+    "no sensors (not allowed: the issue asks for them)": _flag(mujoco.mjtDisableBit.mjDSBL_SENSOR),
+    "no visual geoms": _drop_visual_geoms,
+    "no contact within a finger beyond neighbours": _exclude_same_finger,
+}
+
+
+def _all_cuts(spec: mujoco.MjSpec) -> None:
+    _flag(mujoco.mjtDisableBit.mjDSBL_SENSOR)(spec)
+    _drop_visual_geoms(spec)
+    _exclude_same_finger(spec)
+
+
+KNOBS["the last three together"] = _all_cuts
+
+
+def knob_sweep(p: GripperParams, repeats: int) -> None:
+    models = {"shipped": _variant(p, lambda spec: None)}
+    models.update({k: _variant(p, f) for k, f in KNOBS.items()})
+    runs: dict[str, list[float]] = {k: [] for k in models}
+    for _ in range(repeats):  # interleaved, so drifts of the machine hit every variant alike
+        for k, m in models.items():
+            d = mujoco.MjData(m)
+            u = _scripted_controls(p, m, 3.0)
+            t0 = time.perf_counter()
+            for row in u:
+                d.ctrl[:] = row
+                mujoco.mj_step(m, d)
+            runs[k].append(3.0 / (time.perf_counter() - t0))
+    base = statistics.median(runs["shipped"])
+    for k, xs in runs.items():
+        print(f"  {k}: median {statistics.median(xs):.1f}x real time, "
+              f"{statistics.median(xs) / base:.3f} of the shipped model")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--knobs", action="store_true",
+                    help="also time simulation options and model cuts against the shipped model")
     args = ap.parse_args()
     bend = [run_bending_test(BendingConfig()).wall_time_s for _ in range(args.repeats)]
     print(f"bending test, 2 s at 5e-4 s: median wall {statistics.median(bend):.4f} s "
@@ -85,6 +194,10 @@ def main() -> None:
     rt3 = [grasp_rollout_batch(p2, discrete=True) for _ in range(args.repeats)]
     print(f"  the same through mujoco.rollout (one thread, no Python between steps): median "
           f"{statistics.median(rt3):.1f}x real time (runs: {', '.join(f'{x:.1f}' for x in rt3)})")
+    phase_breakdown(p2)
+    if args.knobs:
+        print("  options and cuts, scripted grasp at 2 ms, mj_step:")
+        knob_sweep(p2, args.repeats)
     # The benchmark's own block trial (8.86 s simulated: settle, approach, close to the servo's
     # stall, lift, hold, shake), wall time including the trial's chunked checks. Closed at
     # stall, the fingers curl onto themselves and the palm: about 100 contacts (multi-point
