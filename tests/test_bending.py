@@ -9,6 +9,7 @@ from gripper.closure import (
     realised_secant_stiffness,
     teeth_closure_stiffness,
     teeth_impedance,
+    teeth_lock_angle,
     teeth_moment,
 )
 from gripper.params import GripperParams
@@ -123,6 +124,25 @@ def test_bad_config():
 def test_hinge_limits_held_at_stall(closing_run):
     p, res = closing_run
     assert res.joint_angles_deg.max() <= p.finger.closure_angle_deg + 0.5
+
+
+@pytest.mark.parametrize("mode", ["dynamic", "quasi_static"])
+def test_teeth_lock_held_at_stall(mode):
+    """With the default stop (compliant teeth), a hinge's hard limit is the lock, where the
+    teeth are squashed flat (closure + 12.4° for the default cut); it must hold within 0.5°, the
+    acceptance tolerance, when the servo's stall reaches it. The paper's silicone stops short of
+    it (about 9° past closure at stall), so the body here is a softer silicone, E = 66 kPa (0.15x
+    paper 000's 0.44 MPa, Ecoflex 00-10 class), which the stall squashes flat."""
+    p = GripperParams()
+    soft = p.replace(material=p.material.replace(youngs_modulus=0.15 * p.material.youngs_modulus))
+    res = run_bending_test(BendingConfig(mode=mode, r_max=0.6, n_points=201 if mode == "dynamic" else 41),
+                           soft)
+    lock = soft.finger.closure_angle_deg + np.degrees(teeth_lock_angle(soft.finger))
+    assert res.tension_N.max() > 0.95 * soft.servo.max_cable_tension  # at stall
+    assert res.joint_angles_deg.max() > lock - 0.5  # the lock is reached ...
+    assert res.joint_angles_deg.max() <= lock + 0.5  # ... and held
+    assert res.joint_angles_deg.min() >= -soft.finger.extension_limit_deg - 0.5
+    assert res.warnings == 0
 
 
 def test_teeth_stiffness_matches_its_closed_form():
