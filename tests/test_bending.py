@@ -132,7 +132,8 @@ def test_teeth_lock_held_at_stall(mode):
     teeth are squashed flat (closure + 12.4° for the default cut); it must hold within 0.5°, the
     acceptance tolerance, when the servo's stall reaches it. The paper's silicone stops short of
     it (about 9° past closure at stall), so the body here is a softer silicone, E = 66 kPa (0.15x
-    paper 000's 0.44 MPa, Ecoflex 00-10 class), which the stall squashes flat."""
+    paper 000's 0.44 MPa; for scale, Smooth-On's datasheet gives Ecoflex 00-10 a 100 % modulus
+    of 8 psi, 55 kPa), which the stall squashes flat."""
     p = GripperParams()
     soft = p.replace(material=p.material.replace(youngs_modulus=0.15 * p.material.youngs_modulus))
     res = run_bending_test(BendingConfig(mode=mode, r_max=0.6, n_points=201 if mode == "dynamic" else 41),
