@@ -54,7 +54,7 @@ __all__ = ["GripperParams", "build_gripper_spec", "build_scene_spec", "build_ben
            "SoftGripperGraspEnv", "record_trial_video", "bending_figure", "success_plot", "load_study",
            "run_study", "Calibration", "apply_calibration", "design_hash", "FitConfig", "fit_hinges",
            "calibrate", "ReferenceConfig", "run_reference", "crush_test"]
-__version__ = "0.5.0"
+__version__ = "0.5.1"
 
 
 def _register_envs() -> None:

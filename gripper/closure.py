@@ -46,9 +46,9 @@ none once the extension stop was made rigid too. The extension stop is rigid, on
 tendon as the lock: the proximal hinges of a finger pressing a balloon sit on it. The
 compliant stop is a property of the silicone, not of the time step, and grasp outcomes no longer
 depend on the step (README, "Closed cuts and the time step"). The formula above is MuJoCo's for
-the integrators that size a limit with ``dof_invweight0`` (``implicitfast``, the bending test's):
-the trials' ``discrete`` integrator sizes it in its effective metric, which holds a closed
-distal hinge up to 1.7x stiffer at a 2 ms step (measured; README, same section).
+the integrators that size a limit with ``dof_invweight0`` (``implicitfast``, the bending test's);
+the trials' ``discrete`` integrator sizes it in its effective metric, so there each hinge's time
+constant is then matched to the design by static settles (:func:`match_discrete_closure`).
 
 Example:
     >>> from gripper.params import GripperParams
@@ -60,6 +60,7 @@ Example:
 
 from __future__ import annotations
 
+import copy
 import functools
 import math
 import warnings
@@ -207,6 +208,67 @@ def tune_closure_limits(spec: mujoco.MjSpec, p: GripperParams, model: mujoco.MjM
         return
     inv_w = np.array([model.dof_invweight0[model.jnt_dofadr[model.joint(j.name).id]] for j in hinges])
     solimp = [round(v, 6) for v in closure_impedance(p)]
-    for j, tau in zip(hinges, closure_time_constants(p, inv_w), strict=True):
+    taus = closure_time_constants(p, inv_w)
+    for j, tau in zip(hinges, taus, strict=True):
         j.solref_limit = [round(float(tau), 6), 1.0]
         j.solimp_limit = solimp
+    compliant = closure_stiffness(p) is not None
+    if compliant and model.opt.integrator == mujoco.mjtIntegrator.mjINT_DISCRETE:
+        tuned = spec.compile()
+        ids = np.array([tuned.joint(j.name).id for j in hinges])
+        taus = match_discrete_closure(tuned, p, ids)
+        for j, tau in zip(hinges, taus, strict=True):
+            j.solref_limit = [round(float(tau), 6), 1.0]
+
+
+# Overrun past closure at which the discrete integrator's closed cuts are matched to their design
+# [rad]: mid-way to the stall's (about 8.5°); the match then holds within 0.3° from 2° to 9°.
+MATCH_OVERRUN = 6.0 * DEG
+MATCH_TOLERANCE = 0.05 * DEG  # rad
+MATCH_SETTLE = 1.0  # s of simulated time to rest (the slowest hinge is at rest within 1e-6 rad/s)
+
+
+def closed_cut_rest_overrun(model: mujoco.MjModel, p: GripperParams, ids: np.ndarray, overrun: float
+                    ) -> np.ndarray:
+    """Overrun past closure [rad] at which each hinge comes to rest under the moment that, by
+    design, holds it ``overrun`` past closure (spring plus closed cut), applied to the hinge
+    alone; gravity and contact off, so every hinge carries just its own moment."""
+    m = copy.copy(model)
+    m.opt.gravity[:] = 0.0
+    m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
+    d = mujoco.MjData(m)
+    closure = m.jnt_range[ids, 1]
+    d.qpos[m.jnt_qposadr[ids]] = closure
+    design = float(realised_secant_stiffness(p, overrun)) * overrun
+    d.qfrc_applied[m.jnt_dofadr[ids]] = m.jnt_stiffness[ids] * (closure - m.qpos_spring[m.jnt_qposadr[ids]]
+                                                                + overrun) + design
+    for _ in range(int(round(MATCH_SETTLE / m.opt.timestep))):
+        mujoco.mj_step(m, d)
+    if not np.isfinite(d.qpos).all() or any(w.number for w in d.warning):
+        raise RuntimeError("closure: the static match of the closed cuts went unstable")
+    return d.qpos[m.jnt_qposadr[ids]] - closure
+
+
+def match_discrete_closure(model: mujoco.MjModel, p: GripperParams, ids: np.ndarray,
+                           iterations: int = 6) -> np.ndarray:
+    """Limit time constants [s] that make the closed cuts of hinges ``ids`` hold their designed
+    moment under the ``discrete`` integrator.
+
+    The limit-spring formula of the module docstring is what the integrators that size a limit
+    with ``dof_invweight0`` realise (``implicitfast``: a hinge held 6° past closure by its design
+    moment rests at 5.98°). The discrete integrator sizes the limit in its own effective metric,
+    which adds the step times the hinge's damping and spring: the same limit then rested at
+    5.3° (0.5 ms) to 3.3° (2 ms) on the distal hinge, 1.8 times too stiff. So, for that
+    integrator, each hinge's time constant is scaled by sqrt(designed / reached overrun) (the
+    stop's stiffness goes as 1/tau²) until every hinge rests within 0.05° of ``MATCH_OVERRUN``;
+    the impedance curve is kept, and with it the stiffening (checked at 2° and 9°: within 0.3°).
+    Edits ``model``'s ``jnt_solref`` and returns the time constants.
+    """
+    for _ in range(iterations):
+        reached = closed_cut_rest_overrun(model, p, ids, MATCH_OVERRUN)
+        if np.abs(reached - MATCH_OVERRUN).max() < MATCH_TOLERANCE:
+            break
+        if (reached <= 0.0).any():
+            raise RuntimeError("closure: a closed cut did not move past closure in the static match")
+        model.jnt_solref[ids, 0] *= np.sqrt(MATCH_OVERRUN / reached)
+    return model.jnt_solref[ids, 0].copy()

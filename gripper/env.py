@@ -209,6 +209,8 @@ class SoftGripperGraspEnv(gym.Env):
       overrun, stiffening, ``springs.closure``), no longer a hard stop whose give grew with the
       step: fingers closed at the servo's stall wrap a little further. Spaces, rewards and episode rules are
       unchanged; episodes differ from 0.4.x for the same seed.
+    - v0, package 0.5.1: under the 2 ms discrete integrator the closed cuts are matched to
+      their design (they were up to 1.8x stiffer at the fingertip); episodes differ from 0.5.0.
 
     Example:
         >>> import gymnasium as gym

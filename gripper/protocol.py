@@ -60,9 +60,10 @@ class GraspProtocol:
             (:mod:`gripper.closure`), block and cylinder trials 0-3 and balloon, paper box and
             bag trials 0-1 give the same outcome at 1 and 2 ms (cylinder trial 0 fails at both,
             in another phase). The peak total force grows
-            with the step, to first order: block trial 0 60.9 / 64.2 / 66.5 / 67.6 N and
-            cylinder trial 1 65.0 / 67.2 / 73.3 / 80.9 N at 0.5 / 1 / 2 / 3 ms (read every
-            12 ms), so 2 ms is 9-13 % above 0.5 ms at a quarter of the cost; 3 ms 11-24 %.
+            with the step, to first order: block trial 0 61.0 / 62.3 / 65.8 / 68.9 N and
+            cylinder trial 1 64.8 / 67.1 / 70.9 / 76.6 N at 0.5 / 1 / 2 / 3 ms (read every
+            12 ms; version 0.5.1), so 2 ms is 8-9 % above 0.5 ms at a quarter of the cost;
+            3 ms 13-18 %.
             (With the old rigid stop, whose overrun grows as the step squared, the cylinder
             was held at 2 ms and dropped in the hold at 1 ms.)
     """

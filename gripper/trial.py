@@ -29,6 +29,7 @@ from mujoco import rollout
 
 import gripper
 from gripper.canonical import apply_canonical_constants
+from gripper.closure import tune_closure_limits
 from gripper.model import build_scene_spec, finger_name
 from gripper.objects import CONTENTS_BODY, OBJECT_BODY, GraspObject, Placement, add_object, get_object
 from gripper.params import GripperParams
@@ -71,6 +72,8 @@ def build_grasp_scene(p: GripperParams, obj: GraspObject, place: Placement) -> m
     """Compile the gripper scene with ``obj`` at ``place`` (``discrete`` integrator, see objects)."""
     spec = build_scene_spec(p, with_object=False)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
+    # the closed cuts are matched to their design under this integrator (closure module)
+    tune_closure_limits(spec, p, spec.compile())
     add_object(spec, obj, place)
     m = spec.compile()
     apply_canonical_constants(m, obj, place)  # same numbers in every process (gripper.canonical)

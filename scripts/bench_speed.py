@@ -18,6 +18,7 @@ import numpy as np
 from mujoco import rollout
 
 from gripper.bending import BendingConfig, run_bending_test
+from gripper.closure import tune_closure_limits
 from gripper.model import build_scene_spec
 from gripper.params import GripperParams
 from gripper.protocol import GraspProtocol
@@ -28,6 +29,7 @@ def _scene(p: GripperParams, discrete: bool) -> mujoco.MjModel:
     spec = build_scene_spec(p)
     if discrete:  # as the grasp trials build it (gripper.trial.build_grasp_scene)
         spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
+        tune_closure_limits(spec, p, spec.compile())
     return spec.compile()
 
 
@@ -95,6 +97,7 @@ def phase_breakdown(p: GripperParams) -> None:
 def _variant(p: GripperParams, change) -> mujoco.MjModel:
     spec = build_scene_spec(p)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
+    tune_closure_limits(spec, p, spec.compile())
     change(spec)
     return spec.compile()
 
@@ -206,7 +209,7 @@ def main() -> None:
     rt5 = [r["sim_time_s"] / r["wall_time_s"] for r in trial]
     print(f"  benchmark block trials (index 0-{args.repeats - 1}, closed to stall): median "
           f"{statistics.median(rt5):.1f}x real time (runs: {', '.join(f'{x:.1f}' for x in rt5)})")
-    # Not the default: same grasp outcomes, but peak forces 11-24 % above the 0.5 ms values
+    # Not the default: same grasp outcomes, but peak forces 13-18 % above the 0.5 ms values
     # (GraspProtocol.timestep).
     p3 = p.replace(sim=p.sim.replace(timestep=0.003))
     rt4 = [grasp_rollout_batch(p3, discrete=True) for _ in range(args.repeats)]
