@@ -181,14 +181,18 @@ class Scene:
         self.nominal_inertia = m.body_inertia.copy()
         self.nominal_friction = m.geom_friction.copy()
         self.nstate = mujoco.mj_stateSize(m, STATE_SPEC)
+        self._signature: tuple | None = None
         self._build_control_map()
         # observation gather: palm x/y joints (or none), object body (or the flex centroid)
         self.palm_xy_q = np.array([self.lift_q[a] for a in ("lift_x", "lift_y") if a in self.lift_q], dtype=int)
         self.palm_xy_slot = np.array([i for i, a in enumerate(("lift_x", "lift_y")) if a in self.lift_q], dtype=int)
 
     def signature(self) -> tuple:
-        m = self.model
-        return (m.nq, m.nv, m.na, m.nu, m.nsensordata, self.nstate)
+        """Sizes that decide whether scenes can share one rollout call (cached: read every step)."""
+        if self._signature is None:
+            m = self.model
+            self._signature = (m.nq, m.nv, m.na, m.nu, m.nsensordata, self.nstate)
+        return self._signature
 
     def lift_action(self, palm_height: float) -> float:
         """The lift action that sets the palm face ``palm_height`` above the floor [m]."""
@@ -454,16 +458,17 @@ class BatchStepper:
             batch = [eps[i] for i in idx]
             datas = self._datas(batch[0].scene)
             final, sens, warned, reset = self._run(batch, [ctrls[i] for i in idx], datas)
-            culprits = {j for j in range(len(idx)) if reset[j]}
+            culprits = set(np.flatnonzero(reset).tolist())
             if warned and not culprits:
                 for j, i in enumerate(idx):
                     if self._run([eps[i]], [ctrls[i]], datas)[2]:  # the pool needs one data per thread
                         culprits.add(j)
+            finite = np.isfinite(final).all(axis=1)
             for j, i in enumerate(idx):
                 err = None
                 if j in culprits:
                     err = "MuJoCo warning during the step (simulation unstable)"
-                elif not np.isfinite(final[j]).all():
+                elif not finite[j]:
                     err = "non-finite state (simulation diverged)"
                 else:
                     load_state(eps[i], final[j], ctrls[i])
