@@ -270,5 +270,7 @@ def match_discrete_closure(model: mujoco.MjModel, p: GripperParams, ids: np.ndar
             break
         if (reached <= 0.0).any():
             raise RuntimeError("closure: a closed cut did not move past closure in the static match")
-        model.jnt_solref[ids, 0] *= np.sqrt(MATCH_OVERRUN / reached)
+        # never below the stability floor of closure_time_constants (MIN_STEPS steps)
+        model.jnt_solref[ids, 0] = np.maximum(model.jnt_solref[ids, 0] * np.sqrt(MATCH_OVERRUN / reached),
+                                              MIN_STEPS * model.opt.timestep)
     return model.jnt_solref[ids, 0].copy()
