@@ -228,8 +228,8 @@ MATCH_TOLERANCE = 0.05 * DEG  # rad
 MATCH_SETTLE = 1.0  # s of simulated time to rest (the slowest hinge is at rest within 1e-6 rad/s)
 
 
-def closed_cut_rest_overrun(model: mujoco.MjModel, p: GripperParams, ids: np.ndarray, overrun: float
-                    ) -> np.ndarray:
+def closed_cut_rest_overrun(model: mujoco.MjModel, p: GripperParams, ids: np.ndarray,
+                            overrun: float) -> np.ndarray:
     """Overrun past closure [rad] at which each hinge comes to rest under the moment that, by
     design, holds it ``overrun`` past closure (spring plus closed cut), applied to the hinge
     alone; gravity and contact off, so every hinge carries just its own moment."""
