@@ -162,6 +162,26 @@ def test_static_fit_of_soft_hinges_at_rest():
     assert fit.metrics["settled"]["tip_rms_frac"] < 0.002
 
 
+def test_bench_rows_with_closed_cuts_are_refused(tmp_path):
+    """The fit finds the open cuts' springs: a row whose hinge is past closure (41.3° for the
+    default cut, plus a 2° reading margin) is refused with its row and hinge, by the reader and
+    by the CLI; 42° (within the margin) passes."""
+    p = GripperParams()
+    closure = p.finger.closure_angle_deg
+    cols = ",".join(angle_columns(6))
+    ok_rows = [f"{0.05 * (i + 1)},{','.join(str(a * (i + 1)) for a in (2, 4, 6, 8, 10))}" for i in range(5)]
+    f = tmp_path / "closed.csv"
+    f.write_text(f"tension_N,{cols}\n" + "\n".join(ok_rows) + "\n30,40,85,130,172,215\n")
+    with pytest.raises(ValueError, match=r"row 7: hinge B2-B3 at 45.0°, past the cut's closure angle 41.3°"):
+        read_measured_csv(f, 6, min_points=5, closure_angle_deg=closure)
+    proc = subprocess.run([sys.executable, "-m", "gripper.cli", "calibrate", "--data", str(f),
+                           "--out", str(tmp_path / "out")], capture_output=True, text=True)
+    assert proc.returncode == 2 and "hinge B2-B3" in proc.stderr
+    assert len(proc.stderr.strip().splitlines()) == 1
+    f.write_text(f"tension_N,{cols}\n" + "\n".join(ok_rows) + "\n30,40,82,124,166,208\n")
+    assert len(read_measured_csv(f, 6, min_points=5, closure_angle_deg=closure).static) == 6
+
+
 @pytest.mark.parametrize("content, message", [
     ("r,angle_B2_deg\n0.1,3\n", "missing column 'tension_N'"),
     ("tension_N,angle_B2_deg,angle_B3_deg\n0.1,3,4\n", "missing column 'angle_B4_deg'"),

@@ -37,13 +37,24 @@ def angle_columns(n_segments: int) -> list[str]:
     return [f"angle_B{j}_deg" for j in range(2, n_segments + 1)]
 
 
-def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1
-                      ) -> BendingRecord:
+# Margin past the closure angle before a measured hinge counts as closed [deg]: about twice the
+# 1° reading noise the fit is checked against (tests: identifiability with 1° noise).
+CLOSED_CUT_MARGIN_DEG = 2.0
+
+
+def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
+                      closure_angle_deg: float | None = None) -> BendingRecord:
     """Read a bench CSV into a static :class:`BendingRecord` (missing observables are NaN).
+
+    ``closure_angle_deg``: the design's closure angle [deg]; given, a row whose element angles
+    put a hinge more than ``CLOSED_CUT_MARGIN_DEG`` past it is refused. The fit finds the hinge
+    springs of the open cuts; past closure the squeezed teeth carry the load (gripper.closure),
+    and fitting springs to such rows would make them too stiff.
 
     Raises:
         ValueError: one line naming the file, row and column at fault: unreadable file,
-            missing column, non-numeric or non-finite cell, or fewer rows than ``min_points``.
+            missing column, non-numeric or non-finite cell, fewer rows than ``min_points``, or
+            a row with a closed cut.
     """
     path = Path(path)
     name = path.name
@@ -106,6 +117,15 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1
     angles[:, 0] = 0.0
     if all(has_ang):
         angles[:, 1:] = np.column_stack([values[c] for c in ang_cols])
+        if closure_angle_deg is not None:
+            hinge = np.diff(angles, axis=1)
+            closed = hinge > closure_angle_deg + CLOSED_CUT_MARGIN_DEG
+            if closed.any():
+                row, j = (int(v) for v in np.argwhere(closed)[0])
+                raise ValueError(
+                    f"data file {name}: row {row + 2}: hinge B{j + 1}-B{j + 2} at {hinge[row, j]:.1f}°, "
+                    f"past the cut's closure angle {closure_angle_deg:.1f}°; the fit needs open "
+                    f"cuts, drop rows with closed cuts")
     tip = np.full((n, 2), np.nan)
     if all(has_tip):
         tip[:] = np.column_stack([values["tip_x_m"], values["tip_z_m"]])

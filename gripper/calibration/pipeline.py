@@ -41,7 +41,8 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
         if fit_cfg.fit_damping:
             raise ValueError("fit.fit_damping: bench data are static points; damping needs the "
                              "reference's transient")
-        record = read_measured_csv(data, p.finger.n_segments, min_points=p.finger.n_hinges)
+        record = read_measured_csv(data, p.finger.n_segments, min_points=p.finger.n_hinges,
+                                   closure_angle_deg=p.finger.closure_angle_deg)
         source, settings = "measured", {"data": str(data)}
         say(f"read {len(record.static)} static points from {data}")
     else:
