@@ -182,6 +182,17 @@ def test_bench_rows_with_closed_cuts_are_refused(tmp_path):
     assert len(read_measured_csv(f, 6, min_points=5, closure_angle_deg=closure).static) == 6
 
 
+def test_reference_stops_when_a_cut_closes():
+    """The reference has no contact between cut faces: a tension that closes a cut stops the run
+    with a clear error naming the tension to stay below (instead of a calibration against faces
+    passing through each other)."""
+    from gripper.calibration.reference import ReferenceConfig, run_reference
+
+    with pytest.raises(ValueError, match=r"reference.tension_max: at .* N hinge B\d-B\d is at .*°, past "
+                                         r"the cut's closure angle 41.3°"):
+        run_reference(config=ReferenceConfig(tension_max=1.5, duration=0.6, n_levels=2))
+
+
 @pytest.mark.parametrize("content, message", [
     ("r,angle_B2_deg\n0.1,3\n", "missing column 'tension_N'"),
     ("tension_N,angle_B2_deg,angle_B3_deg\n0.1,3,4\n", "missing column 'angle_B4_deg'"),

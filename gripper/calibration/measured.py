@@ -30,16 +30,11 @@ from pathlib import Path
 
 import numpy as np
 
-from gripper.calibration.reference import BendingRecord
+from gripper.calibration.reference import CLOSED_CUT_MARGIN_DEG, BendingRecord
 
 
 def angle_columns(n_segments: int) -> list[str]:
     return [f"angle_B{j}_deg" for j in range(2, n_segments + 1)]
-
-
-# Margin past the closure angle before a measured hinge counts as closed [deg]: about twice the
-# 1° reading noise the fit is checked against (tests: identifiability with 1° noise).
-CLOSED_CUT_MARGIN_DEG = 2.0
 
 
 def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,

@@ -75,6 +75,10 @@ PAPER_STEP = 5.0e-4  # s, paper 000 §IV
 PAPER_DURATION = 2.0  # s, paper 000 §IV
 PAPER_MODAL_DAMPING = 0.5  # -, paper 000 Table 2 ("modal damping 0.5")
 RAMP_TIME = 0.05  # s, each tension step's half-cosine ramp: 10 x shorter than a hold
+# Margin past the closure angle before a hinge counts as closed, in the reference and in bench
+# data (gripper.calibration.measured) [deg]: about twice the 1° reading noise the fit is checked
+# against (tests: identifiability with 1° noise).
+CLOSED_CUT_MARGIN_DEG = 2.0
 SYMMETRY_STIFFNESS_FACTOR = 1e6  # -, symmetry-plane spring over E x width (see _hold_symmetry_plane)
 
 
@@ -364,11 +368,15 @@ def run_reference(params: GripperParams | None = None,
     """Run the reference bending test (see the module docstring).
 
     Raises:
-        ValueError: invalid parameters or config.
+        ValueError: invalid parameters or config, or a tension that closes a cut: the reference
+            has no contact between cut faces, so the run stops as soon as a hinge (the
+            rotation between neighbouring elements) passes the closure angle by
+            ``CLOSED_CUT_MARGIN_DEG``, naming the tension to stay below.
         SimulationUnstable: MuJoCo warned (e.g. the effective-metric solve did not converge)
             or the state became non-finite.
     """
     ref = ReferenceFinger(params, config)
+    closed_limit = math.radians(ref.p.finger.closure_angle_deg + CLOSED_CUT_MARGIN_DEG)
     cfg = ref.cfg
     m, d = ref.model, ref.data
     n_steps = int(round(cfg.duration / cfg.timestep))
@@ -383,6 +391,15 @@ def run_reference(params: GripperParams | None = None,
             angles, tip = ref.measure(pos)
             rows.append((d.time, tensions[step], (ref.path_length0 - length) / ref.length0,
                          angles, tip))
+            hinge = np.diff(angles)
+            if (hinge > closed_limit).any():
+                j = int(np.argmax(hinge))
+                raise ValueError(
+                    f"reference.tension_max: at {tensions[step]:.3g} N hinge B{j + 1}-B{j + 2} is at "
+                    f"{math.degrees(hinge[j]):.1f}°, past the cut's closure angle "
+                    f"{ref.p.finger.closure_angle_deg:.1f}°; the reference has no contact between "
+                    f"cut faces: keep tension_max below about {tensions[step]:.2g} N "
+                    f"(now {cfg.tension_max:g} N)")
         if step == n_steps:
             break
         mujoco.mj_step(m, d)
