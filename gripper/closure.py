@@ -206,19 +206,18 @@ def tune_closure_limits(spec: mujoco.MjSpec, p: GripperParams, model: mujoco.MjM
     hinges = [j for j in spec.joints if j.type == mujoco.mjtJoint.mjJNT_HINGE and "_hinge" in j.name]
     if not hinges:
         return
-    inv_w = np.array([model.dof_invweight0[model.jnt_dofadr[model.joint(j.name).id]] for j in hinges])
+    ids = np.array([model.joint(j.name).id for j in hinges])
+    inv_w = model.dof_invweight0[model.jnt_dofadr[ids]]
     solimp = [round(v, 6) for v in closure_impedance(p)]
-    taus = closure_time_constants(p, inv_w)
+    taus = [round(float(tau), 6) for tau in closure_time_constants(p, inv_w)]
+    if p.springs.closure != "rigid" and model.opt.integrator == mujoco.mjtIntegrator.mjINT_DISCRETE:
+        tuned = copy.copy(model)  # the spec compiled with the values set below
+        tuned.jnt_solref[ids, 0] = taus
+        tuned.jnt_solimp[ids] = solimp
+        taus = [round(float(tau), 6) for tau in match_discrete_closure(tuned, p, ids)]
     for j, tau in zip(hinges, taus, strict=True):
-        j.solref_limit = [round(float(tau), 6), 1.0]
+        j.solref_limit = [tau, 1.0]
         j.solimp_limit = solimp
-    compliant = closure_stiffness(p) is not None
-    if compliant and model.opt.integrator == mujoco.mjtIntegrator.mjINT_DISCRETE:
-        tuned = spec.compile()
-        ids = np.array([tuned.joint(j.name).id for j in hinges])
-        taus = match_discrete_closure(tuned, p, ids)
-        for j, tau in zip(hinges, taus, strict=True):
-            j.solref_limit = [round(float(tau), 6), 1.0]
 
 
 # Overrun past closure at which the discrete integrator's closed cuts are matched to their design

@@ -68,12 +68,18 @@ def sample_placement(obj: GraspObject, noise: TrialNoise, seed: int, index: int)
                      mass_scale=float(ms), friction_scale=float(fs))
 
 
-def build_grasp_scene(p: GripperParams, obj: GraspObject, place: Placement) -> mujoco.MjModel:
-    """Compile the gripper scene with ``obj`` at ``place`` (``discrete`` integrator, see objects)."""
-    spec = build_scene_spec(p, with_object=False)
+def grasp_scene_spec(p: GripperParams, *, with_object: bool = False) -> mujoco.MjSpec:
+    """The gripper scene as grasp trials step it: ``discrete`` integrator (see objects), with the
+    closed cuts matched to their design under that integrator (:mod:`gripper.closure`)."""
+    spec = build_scene_spec(p, with_object=with_object)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
-    # the closed cuts are matched to their design under this integrator (closure module)
     tune_closure_limits(spec, p, spec.compile())
+    return spec
+
+
+def build_grasp_scene(p: GripperParams, obj: GraspObject, place: Placement) -> mujoco.MjModel:
+    """Compile the gripper scene with ``obj`` at ``place`` (:func:`grasp_scene_spec`)."""
+    spec = grasp_scene_spec(p)
     add_object(spec, obj, place)
     m = spec.compile()
     apply_canonical_constants(m, obj, place)  # same numbers in every process (gripper.canonical)

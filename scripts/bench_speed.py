@@ -18,19 +18,15 @@ import numpy as np
 from mujoco import rollout
 
 from gripper.bending import BendingConfig, run_bending_test
-from gripper.closure import tune_closure_limits
 from gripper.model import build_scene_spec
 from gripper.params import GripperParams
 from gripper.protocol import GraspProtocol
-from gripper.trial import run_trial
+from gripper.trial import grasp_scene_spec, run_trial
 
 
 def _scene(p: GripperParams, discrete: bool) -> mujoco.MjModel:
-    spec = build_scene_spec(p)
-    if discrete:  # as the grasp trials build it (gripper.trial.build_grasp_scene)
-        spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
-        tune_closure_limits(spec, p, spec.compile())
-    return spec.compile()
+    # discrete: as the grasp trials build it, with the scene's default block
+    return (grasp_scene_spec(p, with_object=True) if discrete else build_scene_spec(p)).compile()
 
 
 def _scripted_controls(p: GripperParams, m: mujoco.MjModel, sim_time: float) -> np.ndarray:
@@ -95,9 +91,7 @@ def phase_breakdown(p: GripperParams) -> None:
 
 
 def _variant(p: GripperParams, change) -> mujoco.MjModel:
-    spec = build_scene_spec(p)
-    spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
-    tune_closure_limits(spec, p, spec.compile())
+    spec = grasp_scene_spec(p, with_object=True)
     change(spec)
     return spec.compile()
 
@@ -148,13 +142,8 @@ KNOBS = {
 }
 
 
-def _all_cuts(spec: mujoco.MjSpec) -> None:
-    _flag(mujoco.mjtDisableBit.mjDSBL_SENSOR)(spec)
-    _drop_visual_geoms(spec)
-    _exclude_same_finger(spec)
-
-
-KNOBS["the last three together"] = _all_cuts
+_CUTS = [KNOBS[k] for k in list(KNOBS)[-3:]]
+KNOBS["the last three together"] = lambda spec: [cut(spec) for cut in _CUTS]
 
 
 def knob_sweep(p: GripperParams, repeats: int) -> None:
