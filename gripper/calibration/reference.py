@@ -234,16 +234,25 @@ def _flexcomp_xml(p: GripperParams, mesh: FingerMesh, pinned: np.ndarray,
 </mujoco>"""
 
 
-def _kabsch_angles(mesh: FingerMesh, cur: np.ndarray, groups: list[np.ndarray]
+def _kabsch_angles(mesh: FingerMesh, cur: np.ndarray, groups: list[np.ndarray],
+                   weights: list[np.ndarray] | None = None
                    ) -> tuple[np.ndarray, list[tuple[np.ndarray, np.ndarray, np.ndarray]]]:
-    """Best-fit rotation of each node group of the whole body (mirror images included);
-    angle about -y (curl to +z) [rad] and transforms."""
+    """Best-fit rotation of each node group of the whole body (mirror images included), the
+    nodes weighted by ``weights`` (per group, whole-body weights such as
+    ``FingerMesh.element_volume_weights``; equal if omitted); angle about -y (curl to +z) [rad]
+    and transforms (rotation, weighted centroid before, after)."""
     angles = np.empty(len(groups))
     fits = []
     for k, idx in enumerate(groups):
         a, b = mesh.mirrored(idx, mesh.points[idx]), mesh.mirrored(idx, cur[idx])
-        ca, cb = a.mean(0), b.mean(0)
-        h = (a - ca).T @ (b - cb)
+        if weights is None:
+            w = np.ones(len(a))
+        else:  # split each node's whole-body weight between it and its mirror image
+            half = weights[k] / mesh.node_weight[idx]
+            w = np.concatenate([half, half[mesh.node_weight[idx] > 1.0]])
+        w = w / w.sum()
+        ca, cb = w @ a, w @ b
+        h = (a - ca).T @ ((b - cb) * w[:, None])
         u, _, vt = np.linalg.svd(h)
         dfix = np.diag([1.0, 1.0, np.sign(np.linalg.det(vt.T @ u.T))])
         rot = vt.T @ dfix @ u.T
@@ -357,7 +366,8 @@ class ReferenceFinger:
 
     def measure(self, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Element angles [rad] (B1..Bn) and the tip point's x, z [m]."""
-        angles, fits = _kabsch_angles(self.mesh, pos, list(self.mesh.nodes_of_element))
+        angles, fits = _kabsch_angles(self.mesh, pos, list(self.mesh.nodes_of_element),
+                                      list(self.mesh.element_volume_weights))
         rot, ca, cb = fits[-1]
         tip = rot @ (self.tip_point - ca) + cb
         return angles, tip[[0, 2]]
