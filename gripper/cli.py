@@ -23,6 +23,16 @@ EXIT_UNSTABLE = 3
 
 def _params(args) -> GripperParams:
     p = GripperParams.load(args.params) if args.params else GripperParams().validate()
+    springs = getattr(args, "springs", "calibrated")
+    if springs != "calibrated":
+        if getattr(args, "calibration", None):
+            raise ValueError("--springs: give either --springs or --calibration, not both")
+        from gripper.params import HingeSprings
+
+        reading = "per_degree" if springs == "paper" else "per_radian"
+        p = p.replace(springs=HingeSprings.paper(reading, closure=p.springs.closure,
+                                                 closure_stiffness=p.springs.closure_stiffness))
+        p = p.validate()
     if getattr(args, "calibration", None):
         from gripper.calibration.calfile import apply_calibration
 
@@ -155,17 +165,36 @@ def _cmd_video(args) -> int:
 def _cmd_calibrate(args) -> int:
     from gripper.calibration.calfile import PAPER_STIFFNESS_NM_PER_DEG
     from gripper.calibration.fit import FitConfig
+    from gripper.calibration.fmbs import FmbsConfig
     from gripper.calibration.mesh import MeshResolution
-    from gripper.calibration.pipeline import calibrate
+    from gripper.calibration.pipeline import calibrate, write_default_calibration
     from gripper.calibration.reference import ReferenceConfig
     from gripper.calibration.report import error_table, format_table
 
+    if args.write_default:
+        if args.params or args.data or args.reference != "continuum":
+            raise ValueError("--write-default: takes no --params, --data or --reference (it "
+                             "calibrates the default design on the continuum reference)")
+        cal = write_default_calibration(on_progress=lambda m: print(m, file=sys.stderr))
+        print(f"wrote models/soft_gripper/calibration.json: stiffness "
+              f"{', '.join(f'{k:.4g}' for k in cal.stiffness)} N·m/rad")
+        return 0
     p = _params(args)
-    ref = ReferenceConfig(mesh=MeshResolution(scale=args.mesh_scale),
-                          tension_max=args.tension_max, n_levels=args.levels)
-    held = tuple(int(v) for v in args.held_out.split(",") if v.strip()) if args.held_out else ()
+    ref = None
+    if args.mesh_scale != 1 or args.tension_max is not None or args.levels != 5:
+        ref = ReferenceConfig(mesh=MeshResolution(scale=args.mesh_scale),
+                              tension_max=args.tension_max or ReferenceConfig().tension_max,
+                              n_levels=args.levels)
+    try:
+        held = tuple(int(v) for v in args.held_out.split(",") if v.strip()) if args.held_out else ()
+    except ValueError:
+        raise ValueError(f"--held-out: expected comma-separated level indices, got "
+                         f"{args.held_out!r}") from None
     fit = FitConfig(fit_damping=args.data is None, held_out=held)
+    fmbs = FmbsConfig(reading=args.reading) if args.reference == "fmbs" else None
     cal, result, record = calibrate(args.out, p, data=args.data, reference=ref, fit=fit,
+                                    kind=args.reference, fmbs=fmbs,
+                                    converge=not args.no_converge,
                                     on_progress=lambda m: print(m, file=sys.stderr))
     print(format_table(error_table(record, result)))
     m = cal.metrics
@@ -256,6 +285,12 @@ def build_parser() -> argparse.ArgumentParser:
                             "replace those of the parameters")
         p.add_argument("--force-calibration", action="store_true",
                        help="apply --calibration even if it was made for another design")
+        from gripper.params import SPRING_SETS
+
+        p.add_argument("--springs", choices=SPRING_SETS, default="calibrated",
+                       help="hinge springs: the committed calibration (default), or paper 000's "
+                            "Table 2 spring read as printed (paper: 1.9e-3 N·m/deg) or per "
+                            "radian (paper_per_radian), for comparison")
         return p
 
     b = with_params(sub.add_parser(
@@ -350,10 +385,21 @@ def build_parser() -> argparse.ArgumentParser:
     cal.add_argument("--params", metavar="FILE", help="gripper parameter file; defaults if omitted")
     cal.add_argument("--data", metavar="CSV", help="bench data instead of the reference run")
     cal.add_argument("--out", default="runs/calibration", help="output folder (default runs/calibration)")
+    cal.add_argument("--reference", choices=("continuum", "fmbs"), default="continuum",
+                     help="reference kind: the continuum body (default) or paper 000's flexible "
+                          "multibody model (elements as flexible bodies, Table 2's hinge springs)")
+    cal.add_argument("--reading", choices=("per_degree", "per_radian"), default="per_degree",
+                     help="fmbs: read Table 2's 1.9e-3 spring per degree (as printed) or per radian")
+    cal.add_argument("--no-converge", action="store_true",
+                     help="skip the mesh-convergence study and its stiffness correction (quick looks)")
+    cal.add_argument("--write-default", action="store_true",
+                     help="regenerate the default design's committed calibration in "
+                          "models/soft_gripper (about 6 minutes on 2 cores)")
     cal.add_argument("--mesh-scale", type=int, default=1,
                      help="reference mesh refinement: 1 default, 2 halves every cell (slow)")
-    cal.add_argument("--tension-max", type=float, default=0.25,
-                     help="highest cable tension of the reference run [N] (default 0.25)")
+    cal.add_argument("--tension-max", type=float, default=None,
+                     help="highest cable tension of the reference run [N] (default 0.25; fmbs: "
+                          "scaled to the reading's spring)")
     cal.add_argument("--levels", type=int, default=5, help="tension levels (default 5)")
     cal.add_argument("--held-out", default="2",
                      help="comma-separated static points left out of the fit (default 2)")

@@ -27,10 +27,21 @@ from gripper.servo import SERVO_PRESETS, ServoDatasheet, servo_datasheet
 
 DEG = math.pi / 180.0
 
-# paper 000, Table 2: torsion spring stiffness 1.9e-3 N·m/deg = 0.1089 N·m/rad.
+# paper 000, Table 2: torsion spring stiffness 1.9e-3 N·m/deg = 0.1089 N·m/rad, as printed. The
+# unit is suspect (see docs/consistency.md): read per radian it is 1.9e-3 N·m/rad.
 PAPER_HINGE_STIFFNESS = 1.9e-3 / DEG
+PAPER_HINGE_STIFFNESS_PER_RAD_READING = 1.9e-3
+# The committed calibration of the default design (``gripper calibrate --write-default``): the
+# default hinge springs are its fitted values. A test fails when it is stale.
+DEFAULT_CALIBRATION_FILE = (Path(__file__).resolve().parent.parent / "models" / "soft_gripper"
+                            / "calibration.json")
 # How a closed cut resists further closing (HingeSprings.closure).
 CLOSURE_MODELS = ("teeth", "stiffness", "rigid")
+# Named spring sets of the command line's --springs (HingeSprings.paper's readings).
+SPRING_SETS = ("calibrated", "paper", "paper_per_radian")
+# Tip element's inertia about its proximal hinge [kg·m²] (default design: 16x16x18 mm of
+# 1120 kg/m³ silicone, less its cuts, ~3.6 g at ~13 mm), for HingeSprings.paper's damping.
+TIP_ELEMENT_INERTIA = 8.3e-7
 
 
 def _finite(name: str, value: Any) -> float:
@@ -64,6 +75,26 @@ def _integer(name: str, value: Any, lo: int, hi: int) -> None:
         raise ValueError(f"{name}: expected an integer in [{lo}, {hi}], got {value!r}")
     if not lo <= value <= hi:
         raise ValueError(f"{name}: must be an integer in [{lo}, {hi}], got {value!r}")
+
+
+def _committed_springs() -> tuple[tuple[float, ...], tuple[float, ...], tuple[float, ...]]:
+    """(stiffness, damping, rest_angle_deg) fitted in :data:`DEFAULT_CALIBRATION_FILE`.
+
+    Read once, at import, with no checks beyond shape (the schema and the design hash are
+    checked by :mod:`gripper.calibration.calfile` and by the staleness test).
+    """
+    try:
+        fitted = json.loads(DEFAULT_CALIBRATION_FILE.read_text())["fitted"]
+        out = tuple(tuple(float(v) for v in fitted[key]) for key in
+                    ("stiffness_Nm_per_rad", "damping_Nms_per_rad", "rest_angle_deg"))
+    except (OSError, KeyError, TypeError, ValueError) as e:
+        raise ImportError(f"gripper: the default design's committed calibration "
+                          f"{DEFAULT_CALIBRATION_FILE} is missing or malformed ({e}); "
+                          f"regenerate it with 'gripper calibrate --write-default'") from None
+    return out  # type: ignore[return-value]
+
+
+CALIBRATED_STIFFNESS, CALIBRATED_DAMPING, CALIBRATED_REST_ANGLE_DEG = _committed_springs()
 
 
 class _Replace:
@@ -209,13 +240,16 @@ class Material(_Replace):
 class HingeSprings(_Replace):
     """Torsion springs at the bridges, one value per hinge or one value for all.
 
+    The defaults are the committed calibration of the default design
+    (:data:`DEFAULT_CALIBRATION_FILE`: the hinge finger fitted to the converged continuum
+    reference, see ``docs/calibration.md``). :meth:`paper` gives paper 000's Table 2 spring
+    instead, for comparison.
+
     Attributes:
-        stiffness: per-hinge stiffness [N·m/rad] (paper 000, Table 2: 1.9e-3 N·m/deg).
-        damping: per-hinge damping [N·m·s/rad]. The paper's "10 N·m·s/deg" is implausible
-            (K/c ≈ 5000 s), so it is not used. Assumed 3e-4: the paper's modal damping ratio
-            0.5 (Table 2) applied to the tip element's own hinge mode,
-            c = 2·0.5·sqrt(K·I_tip), I_tip ≈ 8.3e-7 kg·m² about its hinge. The calibration
-            layer fits it.
+        stiffness: per-hinge stiffness [N·m/rad]. Default: fitted (committed calibration).
+        damping: per-hinge damping [N·m·s/rad]. Default: fitted to the reference's transient,
+            which carries paper 000's modal damping 0.5 (Table 2). The paper's own "10
+            N·m·s/deg" is implausible (K/c ≈ 5000 s) and is not used.
         rest_angle_deg: spring rest angle of each hinge [deg]; 0 = moulded straight.
         closure: how a hinge resists closing past its closure angle, where the faces of its
             cut meet (see :mod:`gripper.closure`):
@@ -235,11 +269,30 @@ class HingeSprings(_Replace):
             estimate's order; set it from a measurement.
     """
 
-    stiffness: tuple[float, ...] = (PAPER_HINGE_STIFFNESS,)
-    damping: tuple[float, ...] = (3.0e-4,)
-    rest_angle_deg: tuple[float, ...] = (0.0,)
+    stiffness: tuple[float, ...] = CALIBRATED_STIFFNESS
+    damping: tuple[float, ...] = CALIBRATED_DAMPING
+    rest_angle_deg: tuple[float, ...] = CALIBRATED_REST_ANGLE_DEG
     closure: str = "teeth"
     closure_stiffness: float = 1.0
+
+    @classmethod
+    def paper(cls, reading: str = "per_degree", **changes: Any) -> HingeSprings:
+        """Paper 000's Table 2 spring on every hinge, for comparison with the calibrated default.
+
+        Args:
+            reading: ``"per_degree"`` (as printed, 1.9e-3 N·m/deg = 0.109 N·m/rad) or
+                ``"per_radian"`` (1.9e-3 N·m/rad).
+
+        Damping: the paper's modal damping 0.5 (Table 2) applied to the tip element's own
+        hinge mode, c = 2·0.5·sqrt(K·I_tip), I_tip ≈ 8.3e-7 kg·m² about its hinge (the
+        paper's "10 N·m·s/deg" is implausible: K/c ≈ 5000 s).
+        """
+        k = {"per_degree": PAPER_HINGE_STIFFNESS,
+             "per_radian": PAPER_HINGE_STIFFNESS_PER_RAD_READING}.get(reading)
+        if k is None:
+            raise ValueError(f"springs reading: must be per_degree or per_radian, got {reading!r}")
+        c = 2.0 * 0.5 * math.sqrt(k * TIP_ELEMENT_INERTIA)
+        return cls(stiffness=(k,), damping=(c,), rest_angle_deg=(0.0,), **changes)
 
     def per_hinge(self, n_hinges: int) -> tuple[tuple[float, ...], ...]:
         """(stiffness, damping, rest_angle_deg), each broadcast to ``n_hinges`` values."""

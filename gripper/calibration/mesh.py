@@ -79,6 +79,9 @@ class MeshResolution:
         bridge_grading: largest over smallest cell height in the bridge and in the wall from
             the bridge top to the channel, the smallest at the bridge top [-]; 1 is uniform.
             Default 3 (see the module docstring, "Grading").
+        split_bridges: cut each bridge at its middle (the plane between two elements): the
+            elements share no nodes and each has an interface face of its own there (paper
+            000's flexible multibody model, :mod:`gripper.calibration.fmbs`). Default False.
         split: tetrahedra per hexahedral cell: ``"centre24"`` (default: 24, around centre and
             face nodes; little locking), ``"centre12"`` (12, centre node only) or ``"kuhn6"``
             (6, no added nodes; locks, see the module docstring).
@@ -95,12 +98,13 @@ class MeshResolution:
     split: str = "centre24"
     symmetric: bool = True
     bridge_grading: float = 3.0
+    split_bridges: bool = False
 
     def validate(self) -> MeshResolution:
         if not (isinstance(self.bridge_grading, int | float) and 1.0 <= self.bridge_grading <= 20.0):
             raise ValueError(f"mesh.bridge_grading: must be a number in [1, 20], "
                              f"got {self.bridge_grading!r}")
-        for name in ("uniform", "symmetric"):
+        for name in ("uniform", "symmetric", "split_bridges"):
             if not isinstance(getattr(self, name), bool):
                 raise ValueError(f"mesh.{name}: must be true or false, got {getattr(self, name)!r}")
         if self.split not in SPLITS:
@@ -296,7 +300,8 @@ def finger_mesh(g: FingerGeometry, res: MeshResolution | None = None) -> FingerM
                 for j, y in enumerate(y_lv):
                     # Nodes are shared between elements only on the bridge (k <= iz_bridge) at
                     # the common boundary; elsewhere the cut separates them.
-                    shared = (i == 0 and e > 0) and (k <= iz_bridge or res.uniform)
+                    shared = ((i == 0 and e > 0) and (k <= iz_bridge or res.uniform)
+                              and not res.split_bridges)
                     key = (e - 1, nx, j, k) if shared else (e, i, j, k)
                     if key not in key_to_id:
                         key_to_id[key] = len(points)

@@ -85,23 +85,28 @@ def _gmsh_mesh(p: GripperParams, size: float, bridge_size: float
             if abs(x0 - L) < 1e-6 and abs(x1 - L) < 1e-6 and y1 < 0.5 * a + 1e-6:
                 occ.remove([(dim, tag)], recursive=True)
         occ.synchronize()
-        # Finer cells around each bridge (the notch apex lines), where the bending is.
-        fields = []
-        for e in range(1, g.n_segments):
-            f = gmsh.model.mesh.field.add("Box")
-            x0 = e * g.pitch
-            gmsh.model.mesh.field.setNumber(f, "VIn", bridge_size)
-            gmsh.model.mesh.field.setNumber(f, "VOut", size)
-            for key, val in (("XMin", x0 - 2.5 * g.bridge_thickness),
-                             ("XMax", x0 + 2.5 * g.bridge_thickness),
-                             ("YMin", -1.0), ("YMax", 1.0), ("ZMin", -1.0),
-                             ("ZMax", 2.0 * g.bridge_thickness),
-                             ("Thickness", 2.0 * g.bridge_thickness)):
-                gmsh.model.mesh.field.setNumber(f, key, val)
-            fields.append(f)
-        fmin = gmsh.model.mesh.field.add("Min")
-        gmsh.model.mesh.field.setNumbers(fmin, "FieldsList", fields)
-        gmsh.model.mesh.field.setAsBackgroundMesh(fmin)
+        # Cells graded towards each cut's apex line (the singular re-entrant corner on the
+        # bridge top): ``bridge_size`` on the line, growing linearly to ``size`` at three bridge
+        # thicknesses from it.
+        apex = []
+        for dim, tag in gmsh.model.getEntities(1):
+            x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(dim, tag)
+            on_cut = any(abs(x0 - e * g.pitch) < 1e-6 and abs(x1 - e * g.pitch) < 1e-6
+                         for e in range(1, g.n_segments))
+            if on_cut and abs(z0 - g.bridge_thickness) < 1e-6 and abs(z1 - g.bridge_thickness) < 1e-6:
+                apex.append(tag)
+        if len(apex) != g.n_hinges:
+            raise RuntimeError(f"quadratic check: found {len(apex)} apex lines, expected {g.n_hinges}")
+        dist = gmsh.model.mesh.field.add("Distance")
+        gmsh.model.mesh.field.setNumbers(dist, "CurvesList", apex)
+        gmsh.model.mesh.field.setNumber(dist, "Sampling", 200)
+        thr = gmsh.model.mesh.field.add("Threshold")
+        gmsh.model.mesh.field.setNumber(thr, "InField", dist)
+        gmsh.model.mesh.field.setNumber(thr, "SizeMin", bridge_size)
+        gmsh.model.mesh.field.setNumber(thr, "SizeMax", size)
+        gmsh.model.mesh.field.setNumber(thr, "DistMin", 0.0)
+        gmsh.model.mesh.field.setNumber(thr, "DistMax", 3.0 * g.bridge_thickness)
+        gmsh.model.mesh.field.setAsBackgroundMesh(thr)
         for opt in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
                     "Mesh.MeshSizeFromCurvature"):
             gmsh.option.setNumber(opt, 0)

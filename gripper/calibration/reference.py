@@ -116,6 +116,11 @@ class ReferenceConfig:
             conditioned (h²K/M is 100x smaller than at the 5 ms relaxation steps of the static
             checks, which keep 1e-6: there 1e-4 left a finer mesh far from rest).
         sample_every: record every k-th step [-].
+        modulus_factor: factor on the silicone's Young's modulus that corrects the mesh's
+            discretisation stiffness [-]: ``MeshConvergence.stiffness_correction`` from
+            :mod:`gripper.calibration.convergence`, so that this mesh has the extrapolated
+            (converged) small-load compliance. 1 runs the mesh as it is. ``gripper
+            calibrate`` sets it from a convergence study of the design.
     """
 
     mesh: MeshResolution = field(default_factory=MeshResolution)
@@ -130,11 +135,12 @@ class ReferenceConfig:
     solver_iterations: int = 3000
     solver_tolerance: float = 1e-2
     sample_every: int = 20
+    modulus_factor: float = 1.0
 
     def validate(self) -> ReferenceConfig:
         self.mesh.validate()
         for name in ("tension_max", "duration", "timestep", "first_mode_hz", "clamp_length",
-                     "solver_tolerance", "mesh_mode_damping"):
+                     "solver_tolerance", "mesh_mode_damping", "modulus_factor"):
             v = getattr(self, name)
             if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
                 raise ValueError(f"reference.{name}: must be a number > 0, got {v!r}")
@@ -156,8 +162,10 @@ class ReferenceConfig:
 
     @property
     def mass_damping(self) -> float:
-        """Mass-proportional damping coefficient alpha = 2 zeta (2 pi f1) [1/s]."""
-        return 2.0 * self.damping_ratio * 2.0 * math.pi * self.first_mode_hz
+        """Mass-proportional damping coefficient alpha = 2 zeta (2 pi f1) [1/s], f1 scaled by
+        sqrt(modulus_factor) (a frequency goes as the square root of the stiffness)."""
+        f1 = self.first_mode_hz * math.sqrt(self.modulus_factor)
+        return 2.0 * self.damping_ratio * 2.0 * math.pi * f1
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -225,7 +233,7 @@ def _flexcomp_xml(p: GripperParams, mesh: FingerMesh, pinned: np.ndarray,
       <flexcomp name="body" type="direct" dim="3" point="{pts}" element="{elem}"
                 mass="{mass:.9g}" radius="0.0002" rgba="0.93 0.93 0.88 1">
         <contact contype="0" conaffinity="0" selfcollide="none"/>
-        <elasticity young="{p.material.youngs_modulus:.9g}" poisson="{p.material.poisson_ratio}"
+        <elasticity young="{p.material.youngs_modulus * cfg.modulus_factor:.9g}" poisson="{p.material.poisson_ratio}"
                     damping="{cfg.mesh_mode_damping:.9g}"/>
         <pin id="{pin}"/>
       </flexcomp>
@@ -277,17 +285,7 @@ class ReferenceFinger:
         self.mesh = finger_mesh(g, self.cfg.mesh)
         pts = self.mesh.points
         self.pinned = np.flatnonzero(pts[:, 0] <= self.cfg.clamp_length + 1e-9)
-        self.model = mujoco.MjModel.from_xml_string(
-            _flexcomp_xml(self.p, self.mesh, self.pinned, self.cfg))
-        self.data = mujoco.MjData(self.model)
-        free = np.ones(len(pts), dtype=bool)
-        free[self.pinned] = False
-        self.body_of_node = np.full(len(pts), -1)
-        for i in np.flatnonzero(free):
-            self.body_of_node[i] = self.model.body(f"body_{i}").id
-        self.free = free
-        self._set_lumped_mass_and_damping()
-        self._hold_symmetry_plane()
+        self._build()
         # Cable path: guide (fixed), one via per element, knot at the tip.
         self.weight = self.mesh.node_weight
         # Share of each whole-body load the meshed part carries: half for a symmetric half mesh.
@@ -299,12 +297,33 @@ class ReferenceFinger:
         self.path_length0 = float(np.linalg.norm(np.diff(path0, axis=0), axis=1).sum())
         self.tip_point = np.array([g.length, 0.0, g.hinge_z])
 
+    def _build(self) -> None:
+        """Compile the model; set ``model``, ``data``, ``free`` (nodes with dofs of their own)
+        and ``body_of_node`` (-1 for the others)."""
+        pts = self.mesh.points
+        self.model = mujoco.MjModel.from_xml_string(
+            _flexcomp_xml(self.p, self.mesh, self.pinned, self.cfg))
+        self.data = mujoco.MjData(self.model)
+        free = np.ones(len(pts), dtype=bool)
+        free[self.pinned] = False
+        self.body_of_node = np.full(len(pts), -1)
+        for i in np.flatnonzero(free):
+            self.body_of_node[i] = self.model.body(f"body_{i}").id
+        self.free = free
+        self._set_lumped_mass_and_damping()
+        self._hold_symmetry_plane()
+
+    def lumped_masses(self) -> np.ndarray:
+        """Each node's mass: a quarter of each of its tetrahedra's [kg]."""
+        tet_mass = self.p.material.density * np.abs(self.mesh.tet_volumes())
+        lumped = np.zeros(self.mesh.n_nodes)
+        np.add.at(lumped, self.mesh.tets.ravel(), np.repeat(0.25 * tet_mass, 4))
+        return lumped
+
     def _set_lumped_mass_and_damping(self) -> None:
         """Node masses from the tetrahedra's volumes; dof damping alpha x node mass."""
-        m, mesh = self.model, self.mesh
-        tet_mass = self.p.material.density * np.abs(mesh.tet_volumes())
-        lumped = np.zeros(mesh.n_nodes)
-        np.add.at(lumped, mesh.tets.ravel(), np.repeat(0.25 * tet_mass, 4))
+        m = self.model
+        lumped = self.lumped_masses()
         bodies = self.body_of_node[self.free]
         m.body_mass[bodies] = lumped[self.free]
         m.dof_damping[m.jnt_dofadr] = self.cfg.mass_damping * m.body_mass[m.jnt_bodyid]
@@ -385,7 +404,13 @@ def run_reference(params: GripperParams | None = None,
         SimulationUnstable: MuJoCo warned (e.g. the effective-metric solve did not converge)
             or the state became non-finite.
     """
-    ref = ReferenceFinger(params, config)
+    return run_bending_record(ReferenceFinger(params, config))
+
+
+def run_bending_record(ref: ReferenceFinger) -> BendingRecord:
+    """The tension staircase of ``ref.cfg`` on a built reference finger (the continuum body or
+    paper 000's flexible multibody model, :mod:`gripper.calibration.fmbs`); see
+    :func:`run_reference` for what it raises."""
     closed_limit = math.radians(ref.p.finger.closure_angle_deg + CLOSED_CUT_MARGIN_DEG)
     cfg = ref.cfg
     m, d = ref.model, ref.data
@@ -431,7 +456,7 @@ def run_reference(params: GripperParams | None = None,
 
 
 __all__ = ["BendingRecord", "ReferenceConfig", "ReferenceFinger", "SimulationUnstable",
-           "beam_end_moment_check", "static_bend",
+           "beam_end_moment_check", "static_bend", "run_bending_record",
            "plateau_indices", "run_reference", "tension_schedule"]
 
 
