@@ -23,10 +23,10 @@ Damage models checked with a platen crush (the balloon bursts when flattened):
     >>> crush_test("balloon", depth=0.040)["damaged"]                    # doctest: +SKIP
     True
 
-The Gymnasium environment ``SoftGripperGrasp-v0`` is registered on import:
+The Gymnasium environment ``SoftGripperGrasp-v1`` is registered on import:
 
     >>> import gymnasium as gym
-    >>> env = gym.make("gripper:SoftGripperGrasp-v0", objects="block")   # doctest: +SKIP
+    >>> env = gym.make("gripper:SoftGripperGrasp-v1", objects="block")   # doctest: +SKIP
 """
 from gripper.render import choose_gl_backend
 
@@ -54,15 +54,15 @@ __all__ = ["GripperParams", "build_gripper_spec", "build_scene_spec", "build_ben
            "SoftGripperGraspEnv", "record_trial_video", "bending_figure", "success_plot", "load_study",
            "run_study", "Calibration", "apply_calibration", "design_hash", "FitConfig", "fit_hinges",
            "calibrate", "ReferenceConfig", "run_reference", "crush_test"]
-__version__ = "0.5.1"
+__version__ = "0.6.0"
 
 
 def _register_envs() -> None:
     import gymnasium
 
-    if "SoftGripperGrasp-v0" not in gymnasium.registry:
+    if "SoftGripperGrasp-v1" not in gymnasium.registry:
         gymnasium.register(
-            id="SoftGripperGrasp-v0", entry_point="gripper.env:SoftGripperGraspEnv",
+            id="SoftGripperGrasp-v1", entry_point="gripper.env:SoftGripperGraspEnv",
             vector_entry_point="gripper.vector_env:SoftGripperGraspVectorEnv",
             max_episode_steps=300)
 

@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v0``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v1``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v0")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v1")``.
 """
 
 from __future__ import annotations
@@ -59,7 +59,7 @@ def env_arguments(**kwargs) -> dict:
     try:
         bound = sig.bind(None, **kwargs)
     except TypeError as e:
-        raise ValueError(f"SoftGripperGrasp-v0: {e}") from None
+        raise ValueError(f"SoftGripperGrasp-v1: {e}") from None
     bound.apply_defaults()
     a = dict(bound.arguments)
     a.pop("self")
@@ -178,7 +178,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v0", **kwargs)``:
+    ``gymnasium.make("gripper:SoftGripperGrasp-v1", **kwargs)``:
 
     | argument | default | meaning |
     |---|---|---|
@@ -211,10 +211,16 @@ class SoftGripperGraspEnv(gym.Env):
       unchanged; episodes differ from 0.4.x for the same seed.
     - v0, package 0.5.1: under the 2 ms discrete integrator the closed cuts are matched to
       their design (they were up to 1.8x stiffer at the fingertip); episodes differ from 0.5.0.
+    - v1, package 0.6.0: the hinge springs are the committed calibration of the default design
+      (fitted to the mesh-converged continuum reference, ``docs/calibration.md``) instead of
+      paper 000's Table 2 number, and the default bridge is the one that makes Table 2's spring
+      (read per radian) consistent with the silicone (``docs/consistency.md``). Spaces, rewards
+      and episode rules are unchanged; the dynamics are not, hence the new version. v0 is
+      no longer registered.
 
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v0", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v1", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """

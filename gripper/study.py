@@ -33,15 +33,16 @@ existing cluster with ``scheduler``. ``results.jsonl`` is appended in point orde
 parameter; ``recommendations.md``. A point that fails is recorded with its error and the study
 goes on.
 
-Hinge stiffness follows the design. The hinge model takes the stiffness of each bridge as a
-parameter (paper 000 Table 2), but a study that changes the bridge or the silicone changes that
-stiffness: the bridge is a short beam in bending, k ∝ E·w·t³ (width w, thickness t), so every
-point's stiffness is the base stiffness times (E/E₀)(w/w₀)(t/t₀)³. A Shore A hardness change sets
-E by Gent's relation (A. N. Gent, Rubber Chem. Technol. 31, 1958: E [MPa] = 0.0981 (56 + 7.62336 S)
-/ (0.137505 (254 − 2.54 S))), as a ratio to its value at the base hardness, so the base keeps
-paper 000's 0.44 MPa. Changing the element count keeps the finger length (pitch = length / n)
-unless the pitch is varied too. Such points are not calibrated against a reference model (the
-calibration layer does not exist yet): results mark them ``calibrated = false`` with the reason.
+Hinge stiffness follows the design. A point that changes the finger's geometry (cut angle,
+bridge thickness, hole height, pitch or element count at a kept length) within the committed
+stiffness surrogate's ranges gets the base springs times the continuum reference's stiffness
+ratio (:mod:`gripper.calibration.surrogate`, leave-one-out error in ``docs/calibration.md``)
+and is marked ``calibrated = true``. Young's modulus scales the springs exactly (K ∝ E); a
+Shore A hardness change sets E by Gent's relation (A. N. Gent, Rubber Chem. Technol. 31, 1958:
+E [MPa] = 0.0981 (56 + 7.62336 S) / (0.137505 (254 − 2.54 S))), as a ratio to its value at the
+base hardness, so the base keeps paper 000's 0.44 MPa. Outside the surrogate (another base
+design, width or height changed, a value beyond its ranges) the bridge-beam rule
+k ∝ E·w·t³ sets the springs and the point is marked ``calibrated = false`` with the reason.
 
 Example:
     >>> from gripper.study import load_study
@@ -149,7 +150,13 @@ def _key_line(text: str, key: str) -> int:
 
 
 def apply_point(base: GripperParams, changes: dict) -> tuple[GripperParams, list[str]]:
-    """The design of one point, and the reasons it is not calibrated (empty: unchanged finger)."""
+    """The design of one point, and the reasons it is not calibrated (empty: calibrated).
+
+    A point that changes the finger's geometry within the committed stiffness surrogate's
+    ranges (:mod:`gripper.calibration.surrogate`) gets the base springs times the surrogate's
+    stiffness ratio (and the exact E ratio): calibrated on the continuum reference. Otherwise
+    the bridge-beam rule sets them and the point is marked not calibrated, with the reason.
+    """
     p = base
     for key, value in changes.items():
         section, _, name = key.partition(".")
@@ -163,17 +170,58 @@ def apply_point(base: GripperParams, changes: dict) -> tuple[GripperParams, list
     if "material.shore_a" in changes and "material.youngs_modulus" not in changes:
         e = base.material.youngs_modulus * gent_modulus(p.material.shore_a) / gent_modulus(base.material.shore_a)
         p = p.replace(material=dataclasses.replace(p.material, youngs_modulus=e))
-    scale = ((p.material.youngs_modulus / base.material.youngs_modulus)
-             * (p.finger.width / base.finger.width)
-             * (p.finger.bridge_thickness / base.finger.bridge_thickness) ** 3)
-    if "springs.stiffness" not in changes and scale != 1.0:
-        k = tuple(v * scale for v in base.springs.stiffness)
-        p = p.replace(springs=dataclasses.replace(p.springs, stiffness=k))
+    e_ratio = p.material.youngs_modulus / base.material.youngs_modulus
+    geometry = {k: _get(p, k) for k in SURROGATE_DIMENSIONS if _get(p, k) != _get(base, k)}
+    surrogate, why_not = _surrogate_for(base, p, changes)
     reasons = []
-    if any(k.startswith(CALIBRATION_SECTIONS) for k in changes):
-        reasons.append("finger, silicone or springs changed; no calibration layer to refit"
-                       + ("; " + BRIDGE_RULE if scale != 1.0 else ""))
+    if "springs.stiffness" in changes:
+        if any(k.startswith(("finger.", "material.")) for k in changes):
+            reasons.append("springs set by hand while the finger or silicone changed")
+    elif surrogate is not None:
+        scale = e_ratio * surrogate.ratio(geometry, base)
+        if scale != 1.0:
+            k = tuple(v * scale for v in base.springs.stiffness)
+            if p.finger.n_hinges != base.finger.n_hinges:
+                k = (float(np.mean(k)),)
+            p = p.replace(springs=dataclasses.replace(p.springs, stiffness=k))
+    else:
+        scale = (e_ratio * (p.finger.width / base.finger.width)
+                 * (p.finger.bridge_thickness / base.finger.bridge_thickness) ** 3)
+        if scale != 1.0:
+            k = tuple(v * scale for v in base.springs.stiffness)
+            if p.finger.n_hinges != base.finger.n_hinges:
+                k = (float(np.mean(k)),)
+            p = p.replace(springs=dataclasses.replace(p.springs, stiffness=k))
+        if any(k.startswith(CALIBRATION_SECTIONS) for k in changes):
+            reasons.append(f"{why_not}; " + BRIDGE_RULE)
     return p.validate(), reasons
+
+
+SURROGATE_DIMENSIONS = ("finger.cut_angle_deg", "finger.bridge_thickness", "finger.hole_height",
+                        "finger.pitch")
+_SURROGATE_CACHE: dict = {}
+
+
+def _surrogate_for(base: GripperParams, p: GripperParams, changes: dict):
+    """The committed stiffness surrogate if it covers this point, else (None, the reason)."""
+    from gripper.calibration.surrogate import StiffnessSurrogate
+
+    other = [k for k in changes if k.startswith(("finger.", "material."))
+             and k not in SURROGATE_DIMENSIONS
+             and k not in ("finger.n_segments", "material.shore_a", "material.youngs_modulus")]
+    if other:
+        return None, f"{', '.join(other)} changed, outside the stiffness surrogate's dimensions"
+    default = GripperParams()
+    if base.finger != default.finger or base.material != default.material:
+        return None, "the base design is not the default one the surrogate was built around"
+    if "s" not in _SURROGATE_CACHE:
+        _SURROGATE_CACHE["s"] = StiffnessSurrogate.load_default()
+    s = _SURROGATE_CACHE["s"]
+    for k in SURROGATE_DIMENSIONS:
+        lo, hi = s.ranges[k]
+        if not lo - 1e-12 <= _get(p, k) <= hi + 1e-12:
+            return None, f"{k} = {_get(p, k):g} is outside the stiffness surrogate's range"
+    return s, ""
 
 
 def load_study(path: str | Path) -> Study:

@@ -110,13 +110,15 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
 
                 fmbs = fmbs or FmbsConfig()
                 settings["fmbs"] = fmbs.to_dict()
+            else:
+                fmbs = None
             run_cfg = ref_cfg
             if converge:
                 from gripper.calibration.convergence import format_convergence, mesh_convergence
 
-                say("mesh convergence of the continuum body (linear solves on 4 meshes) ...")
+                say(f"mesh convergence of the {kind} model (linear solves on 4 meshes) ...")
                 conv = mesh_convergence(p, ref_cfg.mesh, clamp_length=ref_cfg.clamp_length,
-                                        on_progress=say)
+                                        fmbs=fmbs if kind == "fmbs" else None, on_progress=say)
                 (tmp / "convergence.json").write_text(json.dumps(conv.to_dict(), indent=2) + "\n")
                 say(format_convergence(conv))
                 run_cfg = replace(ref_cfg, modulus_factor=conv.stiffness_correction)
@@ -162,6 +164,23 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
     return cal, result, record
 
 
+def stale_reasons(cal: Calibration, params: GripperParams | None = None) -> list[str]:
+    """Why ``cal`` no longer stands for ``params`` (the default design if omitted), as
+    one-line reasons; empty when it is fresh. Checked by a test on the committed default."""
+    p = params or GripperParams()
+    reasons = []
+    if cal.design_hash != design_hash(p):
+        reasons.append(f"design hash {cal.design_hash} != {design_hash(p)} (finger, material or "
+                       f"cable changed); run 'gripper calibrate --write-default'")
+    kind = cal.settings.get("kind", cal.source)
+    want = settings_hash(default_settings(kind))
+    got = cal.settings.get("settings_hash")
+    if kind in REFERENCE_KINDS and got != want:
+        reasons.append(f"reference/fit settings hash {got} != {want} (ReferenceConfig or "
+                       f"FitConfig defaults changed); run 'gripper calibrate --write-default'")
+    return reasons
+
+
 def write_default_calibration(on_progress=None) -> Calibration:
     """Regenerate the default design's committed calibration (``gripper calibrate
     --write-default``): the continuum reference with its mesh convergence, fitted, into
@@ -182,4 +201,4 @@ def write_default_calibration(on_progress=None) -> Calibration:
 
 
 __all__ = ["REFERENCE_KINDS", "calibrate", "default_settings", "settings_hash",
-           "write_default_calibration"]
+           "stale_reasons", "write_default_calibration"]

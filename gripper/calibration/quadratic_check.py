@@ -15,7 +15,8 @@ opening: the same resultant on the same line of action (the hole axis). Clamp: e
 ``x <= clamp_length`` is fixed, as in the reference. Only the half y >= 0 is meshed, with the
 symmetry condition ``u_y = 0`` on the plane y = 0.
 
-Measure: the small-load bending compliance ``d(bending)/dT`` [deg/N], bending being the
+Measure (of the linear solution scaled to microradians, where a best fit reads a linearised
+rotation exactly): the small-load bending compliance ``d(bending)/dT`` [deg/N], bending being the
 best-fit rotation of the tip element B6 relative to the base element B1 (over each element's
 mesh vertices, as the reference measures it).
 
@@ -34,7 +35,7 @@ import time
 
 import numpy as np
 
-from gripper.calibration.convergence import CHECK_TENSION, solve_clamped
+from gripper.calibration.convergence import CHECK_TENSION, MEASURE_SCALE, solve_clamped
 from gripper.calibration.mesh import channel_side
 from gripper.params import GripperParams
 
@@ -213,8 +214,8 @@ def quadratic_compliance(params: GripperParams | None = None, *, size: float = 2
         w = np.zeros(len(verts))
         np.add.at(w, tets[owner == e].ravel(), np.repeat(0.25 * vol[owner == e], 4))
         idx = np.flatnonzero(w > 0)
-        angles.append(_best_fit_angle(verts[idx], verts[idx] + disp[idx], w[idx]))
-    bend = math.degrees(angles[1] - angles[0])
+        angles.append(_best_fit_angle(verts[idx], verts[idx] + MEASURE_SCALE * disp[idx], w[idx]))
+    bend = math.degrees(angles[1] - angles[0]) / MEASURE_SCALE
     return {"compliance_deg_per_N": bend / CHECK_TENSION, "nodes": int(basis.N // 3),
             "tets": int(len(tets)), "dofs": int(basis.N), "size_m": size,
             "bridge_size_m": bridge_size or 0.25 * size, "wall_time_s": time.perf_counter() - t0}
