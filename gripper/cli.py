@@ -171,6 +171,14 @@ def _cmd_calibrate(args) -> int:
     from gripper.calibration.reference import ReferenceConfig
     from gripper.calibration.report import error_table, format_table
 
+    if args.write_surrogate:
+        from gripper.calibration.surrogate import StiffnessSurrogate
+
+        sur = StiffnessSurrogate.build(on_progress=lambda m: print(m, file=sys.stderr))
+        path = sur.save()
+        print(f"wrote {path}: {len(sur.samples)} designs, leave-one-out stiffness error "
+              f"{100 * sur.loo_error.max():.2f} % at most")
+        return 0
     if args.write_default:
         if args.params or args.data or args.reference != "continuum":
             raise ValueError("--write-default: takes no --params, --data or --reference (it "
@@ -395,6 +403,9 @@ def build_parser() -> argparse.ArgumentParser:
     cal.add_argument("--write-default", action="store_true",
                      help="regenerate the default design's committed calibration in "
                           "models/soft_gripper (about 6 minutes on 2 cores)")
+    cal.add_argument("--write-surrogate", action="store_true",
+                     help="regenerate the committed stiffness surrogate of the design studies "
+                          "(models/studies/stiffness_surrogate.json, about 1 minute)")
     cal.add_argument("--mesh-scale", type=int, default=1,
                      help="reference mesh refinement: 1 default, 2 halves every cell (slow)")
     cal.add_argument("--tension-max", type=float, default=None,

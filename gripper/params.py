@@ -122,10 +122,15 @@ class FingerGeometry(_Replace):
             a 3 mm bridge, a 6 mm hole and 3 mm of wall on the grasping face.
         cut_angle_deg: opening angle of each triangular cut [deg] (paper 000 §II: 45°). A hinge
             stops where its cut closes (:attr:`closure_angle_deg`).
-        bridge_thickness: silicone left under each cut [m]. Assumed 3 mm: thin enough to be
-            the compliant part, thick enough to mould in Shore 20A silicone.
+        bridge_thickness: silicone left under each cut [m]. 1.9 mm: the bridge at which the
+            mesh-converged continuum body of paper 000's silicone has the equivalent hinge
+            spring of Table 2's "1.9e-3 N·m/deg" read per radian (root 1.892 mm, a root-find on
+            the reference, ``docs/consistency.md``), the one reading a bridge of this finger can
+            reach (read per degree it needs more than the 8.3 mm the channel leaves). The
+            paper gives no dimension; 0.5.x assumed 3 mm.
         hole_height: height of the cable-hole axis above the back face [m]. Assumed 12 mm:
-            9 mm above the bridge (the brief's 8-10 mm), a 10.5 mm lever arm about the hinge.
+            10.1 mm above the bridge (the brief's 8-10 mm), an 11.05 mm lever arm about the
+            hinge.
         hole_diameter: diameter of the cable holes [m] (paper 000 §II: 6 mm).
         extension_limit_deg: how far a hinge may bend backwards (opening the cut) [deg].
             Assumed 5°: the bridge and the closed back face resist extension stiffly.
@@ -136,7 +141,7 @@ class FingerGeometry(_Replace):
     width: float = 0.016
     height: float = 0.018
     cut_angle_deg: float = 45.0
-    bridge_thickness: float = 0.003
+    bridge_thickness: float = 0.0019
     hole_height: float = 0.012
     hole_diameter: float = 0.006
     extension_limit_deg: float = 5.0

@@ -54,6 +54,7 @@ from gripper.calibration.mesh import MeshResolution, finger_mesh
 from gripper.params import GripperParams
 
 CHECK_TENSION = 0.01  # N: the small check load (the solve is linear; results are per newton)
+DIRECT_SOLVE_MAX_DOFS = 60000  # reduced flexible multibody systems up to this size: sparse LU
 MEASURE_SCALE = 1e-4  # -, the linear solution is read at this fraction of the check load
 GCI_SAFETY_FACTOR = 1.25  # -, Celik et al. (2008) for three or more grids
 DEFAULT_SCALES = (1, 2, 3, 4)  # the default mesh and three systematically refined ones
@@ -151,19 +152,12 @@ def _solve_fmbs(p: GripperParams, fm, K, f: np.ndarray, fixed: np.ndarray, basis
     import scipy.sparse as sp
     from scipy.sparse.linalg import spsolve
 
-    g, pts = p.finger, fm.points
+    pts = fm.points
     n = basis.N
     nd = basis.nodal_dofs  # (3, nodes)
-    zone = g.bridge_thickness + 1e-12
-    bodies = []  # (nodes, origin, parent index or -1)
-    for j in range(1, g.n_segments):
-        x = j * g.pitch
-        before, after = fm.nodes_of_element[j - 1], fm.nodes_of_element[j]
-        origin = np.array([x, 0.0, g.hinge_z])
-        bodies.append((before[np.abs(pts[before, 0] - x) <= zone], origin, -1))
-        bodies.append((after[np.abs(pts[after, 0] - x) <= zone], origin, len(bodies) - 1))
-    tip = fm.nodes_of_element[-1]
-    bodies.append((tip[pts[tip, 0] >= g.length - zone], np.array([g.length, 0.0, g.hole_height]), -1))
+    from gripper.calibration.fmbs import rigid_zones
+
+    bodies = rigid_zones(p, fm)
     in_body = np.zeros(len(pts), dtype=bool)
     for nodes, _, _ in bodies:
         in_body[nodes] = True
@@ -199,7 +193,29 @@ def _solve_fmbs(p: GripperParams, fm, K, f: np.ndarray, fixed: np.ndarray, basis
     hinge_cols = [body_cols[b][2][1][0] for b in range(len(bodies)) if bodies[b][2] >= 0]
     for c in hinge_cols:
         Kr[c, c] += k_hinge
-    q = spsolve(Kr.tocsc(), P.T @ f)
+    Kr = Kr.tocsr()
+    fr = P.T @ f
+    if Kr.shape[0] < DIRECT_SOLVE_MAX_DOFS:
+        return P @ spsolve(Kr.tocsc(), fr)
+    # Large meshes: conjugate gradients on the reduced system, preconditioned by smoothed
+    # aggregation with the rigid-body modes projected onto the reduced dofs.
+    import pyamg
+    from scipy.sparse.linalg import cg
+
+    comp = np.arange(n) % 3
+    x, y, z = basis.doflocs
+    B = np.zeros((n, 6))
+    for c in range(3):
+        B[comp == c, c] = 1.0
+    for k, (c1, v1, c2, v2) in enumerate(((0, -y, 1, x), (1, -z, 2, y), (2, -x, 0, z))):
+        B[comp == c1, 3 + k] = v1[comp == c1]
+        B[comp == c2, 3 + k] = v2[comp == c2]
+    PtP = (P.T @ P).tocsc()
+    Br = np.column_stack([spsolve(PtP, P.T @ B[:, i]) for i in range(6)])
+    ml = pyamg.smoothed_aggregation_solver(Kr, B=Br)
+    q, info = cg(Kr, fr, rtol=1e-10, maxiter=5000, M=ml.aspreconditioner())
+    if info != 0:
+        raise RuntimeError(f"linear solve: conjugate gradients did not converge (info {info})")
     return P @ q
 
 

@@ -15,9 +15,10 @@ Here, in MuJoCo:
   paper's 30 retained modes (Table 2) approximate. Its discretisation stiffness is corrected
   like the continuum reference's (:attr:`ReferenceConfig.modulus_factor`).
 * **Joints**: in paper 000 the bridge *is* the hinge and its spring, so the elements'
-  flexible bodies must not bend there too. Each element's silicone within one bridge thickness
-  of a bridge's middle plane (the root of the teeth beside the cut's apex, where the strain of
-  the continuum body concentrates) is held rigid, as an interface (the connection points B_i,
+  flexible bodies must not bend there too. Each element's silicone next to a bridge (the root
+  of the teeth beside the cut's apex, where the strain of the continuum body concentrates:
+  the first 14.6 % of the element's length, 2.3 mm at the default bridge, see
+  :func:`rigid_zones`) is held rigid, as an interface (the connection points B_i,
   C_i of paper 000 Fig. 3): the zone of the element before the bridge by a body with the planar
   dofs (x, z slides, rotation about y), the zone after it by a child body joined to it by a
   hinge about y through the bridge's neutral axis, carrying the torsion spring and damper. The
@@ -25,8 +26,8 @@ Here, in MuJoCo:
   each element kept half of the bridge's own compliance and the finger bent like the continuum
   body whatever the spring: a first trial put hinge B5-B6 past closure at 2.9 N with the
   0.109 N·m/rad spring, where the spring alone holds it at 16°.) B1 is clamped over the half
-  of its length in the mount, as in the continuum reference. The tip element's last bridge
-  thickness is held rigid too (connection point A_6) and takes the knot's force, which
+  of its length in the mount, as in the continuum reference. The tip element's distal zone is
+  held rigid too (connection point A_6) and takes the knot's force, which
   otherwise crushed the channel rim at the per-degree reading's tensions of several newtons.
 * **Cable**: the same equivalent forces as the continuum reference (one via point per element
   on its channel wall, the knot at the tip), recomputed from the deformed shape every step.
@@ -121,6 +122,49 @@ def fmbs_tension_max(p: GripperParams, fmbs: FmbsConfig) -> float:
     return TARGET_CLOSURE_FRACTION * math.radians(g.closure_angle_deg) * fmbs.hinge_stiffness / lever
 
 
+ZONE_FRACTION = 0.5 * (1.0 - math.cos(math.pi / 4.0))  # = 0.146, see rigid_zones
+
+
+def _element_u(p: GripperParams, mesh, e: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes of element ``e`` and their position along it, 0 at its proximal and 1 at its
+    distal face, measured along the mesh's lines (which lean with the cut faces)."""
+    from gripper.geometry import element_kind
+
+    g = p.finger
+    nodes = mesh.nodes_of_element[e]
+    x, z = mesh.points[nodes, 0], mesh.points[nodes, 2]
+    kind = element_kind(e, g.n_segments)
+    d = np.maximum(0.0, z - g.bridge_thickness) * math.tan(0.5 * math.radians(g.cut_angle_deg))
+    lo = e * g.pitch + (d if kind in ("middle", "tip") else 0.0)
+    hi = (e + 1) * g.pitch - (d if kind in ("middle", "base") else 0.0)
+    return nodes, (x - lo) / (hi - lo)
+
+
+def rigid_zones(p: GripperParams, mesh) -> list[tuple[np.ndarray, np.ndarray, int]]:
+    """The rigid zones of the flexible multibody finger: (nodes, origin, parent), parent the
+    index of the zone a hinge joins it to (-1: a zone with planar dofs of its own).
+
+    A zone is the silicone within ``ZONE_FRACTION`` of an element's length from its end, along
+    the mesh's lines: the first of the default mesh's four cosine-graded cells (2.3 mm at the
+    bridge of the default design, 0.78 of its thickness). It is the same region on every
+    refinement (cosine grading puts a node at that fraction whatever the scale), so the mesh
+    convergence of the model is systematic. Per bridge j: the end of element j-1, then the start
+    of element j (hinged to it); last, the tip element's distal end (the knot, A_6).
+    """
+    g = p.finger
+    tol = 1e-9
+    out = []
+    for j in range(1, g.n_segments):
+        origin = np.array([j * g.pitch, 0.0, g.hinge_z])
+        nb, ub = _element_u(p, mesh, j - 1)
+        na, ua = _element_u(p, mesh, j)
+        out.append((nb[ub >= 1.0 - ZONE_FRACTION - tol], origin, -1))
+        out.append((na[ua <= ZONE_FRACTION + tol], origin, len(out) - 1))
+    nt, ut = _element_u(p, mesh, g.n_segments - 1)
+    out.append((nt[ut >= 1.0 - ZONE_FRACTION - tol], np.array([g.length, 0.0, g.hole_height]), -1))
+    return out
+
+
 class FmbsFinger(ReferenceFinger):
     """The compiled flexible multibody finger (see the module docstring)."""
 
@@ -129,20 +173,6 @@ class FmbsFinger(ReferenceFinger):
         self.fmbs = (fmbs or FmbsConfig()).validate()
         cfg = config or ReferenceConfig()
         super().__init__(params, replace(cfg, mesh=replace(cfg.mesh, split_bridges=True)))
-
-    def _interfaces(self) -> list[tuple[np.ndarray, np.ndarray]]:
-        """Per bridge j = 1..n-1: the nodes of element j-1 and of element j within one bridge
-        thickness of the bridge's middle plane (the bridge zone, held rigid on either side of
-        the hinge)."""
-        g, pts = self.p.finger, self.mesh.points
-        zone = g.bridge_thickness + 1e-12
-        out = []
-        for j in range(1, g.n_segments):
-            x = j * g.pitch
-            before, after = self.mesh.nodes_of_element[j - 1], self.mesh.nodes_of_element[j]
-            out.append((before[np.abs(pts[before, 0] - x) <= zone],
-                        after[np.abs(pts[after, 0] - x) <= zone]))
-        return out
 
     def modal_hinge_damping(self, lumped: np.ndarray) -> float:
         """Hinge damper [N·m·s/rad] that gives the chain's first mode Table 2's modal damping
@@ -166,21 +196,19 @@ class FmbsFinger(ReferenceFinger):
         owner = np.full(len(pts), "", dtype=object)
         owner[self.pinned] = "world"
         origins: dict[str, np.ndarray] = {"world": np.zeros(3)}
+        zones = rigid_zones(p, mesh)
         hinge_bodies = []
-        for j, (before, after) in enumerate(self._interfaces(), start=1):
+        for j in range(1, g.n_segments):
+            (before, origin, _), (after, _, _) = zones[2 * j - 2], zones[2 * j - 1]
             if np.isin(before, self.pinned).any() or np.isin(after, self.pinned).any():
                 raise ValueError("reference.clamp_length: the clamp reaches the first bridge")
-            origin = np.array([j * g.pitch, 0.0, g.hinge_z])
             for name, nodes in ((f"L{j}", before), (f"R{j}", after)):
                 owner[nodes] = name
                 origins[name] = origin
             hinge_bodies.append((j, origin, before, after))
-        # The knot: the tip element's silicone within one bridge thickness of its distal face,
-        # held rigid (paper 000's connection point A_6), so the knot's force bears on it as on
-        # a washer instead of crushing the channel's rim.
-        tip_nodes = mesh.nodes_of_element[-1]
-        knot = tip_nodes[pts[tip_nodes, 0] >= g.length - g.bridge_thickness - 1e-12]
-        knot_origin = np.array([g.length, 0.0, g.hole_height])
+        # The knot (paper 000's connection point A_6): its rigid zone takes the knot's force as
+        # a washer would, instead of the channel's rim being crushed.
+        knot, knot_origin, _ = zones[-1]
         owner[knot] = "knot"
         origins["knot"] = knot_origin
         node_bodies = [i for i in range(len(pts)) if owner[i] == ""]

@@ -48,6 +48,24 @@ def settings_hash(settings: dict) -> str:
     return hashlib.sha256(json.dumps(settings, sort_keys=True).encode()).hexdigest()[:16]
 
 
+# Fraction of the closure angle the continuum reference's highest tension bends the average
+# hinge to (auto_tension_max). The distal hinges bend further than the average (0.5.x: 0.7 of
+# closure at the most, 0.6 on average); the reference has no contact between cut faces.
+AUTO_CLOSURE_FRACTION = 0.5
+
+
+def auto_tension_max(p: GripperParams, conv) -> float:
+    """Highest tension of the continuum reference run [N]: the tension at which the
+    converged body's average hinge turns by ``AUTO_CLOSURE_FRACTION`` of its closure angle,
+    from the extrapolated small-load compliance (bending per newton over the hinge count),
+    to three significant figures."""
+    import math
+
+    per_hinge = math.radians(conv.richardson.extrapolated) / p.finger.n_hinges  # rad/N
+    t = AUTO_CLOSURE_FRACTION * math.radians(p.finger.closure_angle_deg) / per_hinge
+    return float(f"{t:.3g}")
+
+
 def default_settings(kind: str = "continuum", fmbs=None) -> dict:
     """The reference and fit settings ``calibrate`` uses when given none (its cache key)."""
     out = {"kind": kind, "reference": ReferenceConfig().to_dict(), "fit": asdict(FitConfig())}
@@ -122,6 +140,8 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
                 (tmp / "convergence.json").write_text(json.dumps(conv.to_dict(), indent=2) + "\n")
                 say(format_convergence(conv))
                 run_cfg = replace(ref_cfg, modulus_factor=conv.stiffness_correction)
+                if reference is None and kind == "continuum":
+                    run_cfg = replace(run_cfg, tension_max=auto_tension_max(p, conv))
                 settings["convergence"] = {
                     "stiffness_correction": conv.stiffness_correction,
                     "default_error": conv.default_error,
