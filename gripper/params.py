@@ -95,6 +95,8 @@ def _committed_springs() -> tuple[tuple[float, ...], tuple[float, ...], tuple[fl
 
 
 CALIBRATED_STIFFNESS, CALIBRATED_DAMPING, CALIBRATED_REST_ANGLE_DEG = _committed_springs()
+_CALIBRATED = {"stiffness": CALIBRATED_STIFFNESS, "damping": CALIBRATED_DAMPING,
+               "rest_angle_deg": CALIBRATED_REST_ANGLE_DEG}
 
 
 class _Replace:
@@ -300,10 +302,17 @@ class HingeSprings(_Replace):
         return cls(stiffness=(k,), damping=(c,), rest_angle_deg=(0.0,), **changes)
 
     def per_hinge(self, n_hinges: int) -> tuple[tuple[float, ...], ...]:
-        """(stiffness, damping, rest_angle_deg), each broadcast to ``n_hinges`` values."""
+        """(stiffness, damping, rest_angle_deg), each broadcast to ``n_hinges`` values.
+
+        The committed calibration's per-hinge values (the defaults) on a finger with another
+        number of hinges become their mean on every hinge: that calibration is of the default
+        design, so recalibrate such a design (``gripper calibrate --params``).
+        """
         out = []
         for name in ("stiffness", "damping", "rest_angle_deg"):
             v = tuple(getattr(self, name))
+            if len(v) not in (1, n_hinges) and v == _CALIBRATED[name]:
+                v = (sum(v) / len(v),)
             out.append(v * n_hinges if len(v) == 1 else v)
         return tuple(out)
 
@@ -314,7 +323,8 @@ class HingeSprings(_Replace):
             if not isinstance(values, tuple | list) or len(values) == 0:
                 raise ValueError(f"springs.{name}: expected a non-empty list of numbers, "
                                  f"got {values!r}")
-            if n_hinges is not None and len(values) not in (1, n_hinges):
+            if (n_hinges is not None and len(values) not in (1, n_hinges)
+                    and tuple(values) != _CALIBRATED[name]):
                 raise ValueError(f"springs.{name}: expected 1 or {n_hinges} values (one per "
                                  f"hinge), got {len(values)}")
             for i, v in enumerate(values):

@@ -9,6 +9,7 @@ above the floor, reel all cables in together at 2 rad/s of spool (0.04 m/s of ca
 heights and spool angles into actions with ``env.unwrapped.lift_action`` and ``servo_action``.
 
 Run: .venv/bin/python scripts/scripted_policy.py --objects block,cylinder --episodes 50
+     [--params FILE]   (e.g. 0.5.1's design: 3 mm bridge, paper 000's spring per degree)
 Prints the success rate per object with its Wilson 95 % interval.
 """
 
@@ -72,10 +73,10 @@ class ScriptedGrasp:
         return a
 
 
-def run(objects, episodes, seed):
+def run(objects, episodes, seed, params=None):
     out = {}
     for name in objects:
-        env = gym.make("gripper:SoftGripperGrasp-v1", objects=name, xy_actions=True)
+        env = gym.make("gripper:SoftGripperGrasp-v1", objects=name, xy_actions=True, params=params)
         policy = ScriptedGrasp(env)
         wins = 0
         for ep in range(episodes):
@@ -100,5 +101,11 @@ if __name__ == "__main__":
     ap.add_argument("--objects", default="block,cylinder")
     ap.add_argument("--episodes", type=int, default=50)
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--params", metavar="FILE", help="gripper parameter file (default design if omitted)")
     args = ap.parse_args()
-    run(args.objects.split(","), args.episodes, args.seed)
+    params = None
+    if args.params:
+        from gripper.params import GripperParams
+
+        params = GripperParams.load(args.params)
+    run(args.objects.split(","), args.episodes, args.seed, params)

@@ -97,14 +97,36 @@ def test_bad_study_is_refused_before_work(tmp_path, capsys, edit, key, line):
 
 def test_bridge_rule_and_gent():
     base = GripperParams()
-    p, reasons = apply_point(base, {"finger.bridge_thickness": 0.0015})
+    # Outside the stiffness surrogate's range (2-4 mm... its lower end is the default 1.9 mm):
+    # the beam rule, marked uncalibrated.
+    t = 0.5 * base.finger.bridge_thickness
+    p, reasons = apply_point(base, {"finger.bridge_thickness": t})
     assert p.springs.stiffness[0] == pytest.approx(base.springs.stiffness[0] / 8)  # k ∝ t³
-    assert reasons
+    assert reasons and "surrogate" in reasons[0]
     p, _ = apply_point(base, {"material.shore_a": 20.0})
     assert p.material.youngs_modulus == pytest.approx(base.material.youngs_modulus)
     assert gent_modulus(30.0) > gent_modulus(20.0)
     p, reasons = apply_point(base, {"servo.spool_radius": 0.015})
     assert reasons == [] and p.springs.stiffness == base.springs.stiffness
+
+
+def test_geometry_points_get_the_continuum_surrogate():
+    """Within its ranges a geometry change takes the surrogate's stiffness ratio, checked against
+    the reference's own linear solve at that design (the same discretisation, corrected by the
+    surrogate's convergence law), and is marked calibrated."""
+    from gripper.calibration.surrogate import StiffnessSurrogate, equivalent_stiffness_raw
+
+    base = GripperParams()
+    t = 0.003
+    p, reasons = apply_point(base, {"finger.bridge_thickness": t})
+    assert reasons == []
+    s = StiffnessSurrogate.load_default()
+    raw_ratio = equivalent_stiffness_raw(p) / equivalent_stiffness_raw(base)
+    want = raw_ratio * s.correction_factor(t) / s.correction_factor(base.finger.bridge_thickness)
+    assert p.springs.stiffness[0] / base.springs.stiffness[0] == pytest.approx(want, rel=0.02)
+    assert s.loo_error.max() <= 0.05
+    p, reasons = apply_point(base, {"material.youngs_modulus": 0.88e6})  # K ∝ E, exactly
+    assert reasons == [] and p.springs.stiffness[0] == pytest.approx(2 * base.springs.stiffness[0])
 
 
 def test_blocked_force_grows_with_shortening():

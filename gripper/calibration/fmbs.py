@@ -140,7 +140,8 @@ def _element_u(p: GripperParams, mesh, e: int) -> tuple[np.ndarray, np.ndarray]:
     return nodes, (x - lo) / (hi - lo)
 
 
-def rigid_zones(p: GripperParams, mesh) -> list[tuple[np.ndarray, np.ndarray, int]]:
+def rigid_zones(p: GripperParams, mesh, exclude: np.ndarray | None = None
+                ) -> list[tuple[np.ndarray, np.ndarray, int]]:
     """The rigid zones of the flexible multibody finger: (nodes, origin, parent), parent the
     index of the zone a hinge joins it to (-1: a zone with planar dofs of its own).
 
@@ -149,19 +150,23 @@ def rigid_zones(p: GripperParams, mesh) -> list[tuple[np.ndarray, np.ndarray, in
     bridge of the default design, 0.78 of its thickness). It is the same region on every
     refinement (cosine grading puts a node at that fraction whatever the scale), so the mesh
     convergence of the model is systematic. Per bridge j: the end of element j-1, then the start
-    of element j (hinged to it); last, the tip element's distal end (the knot, A_6).
+    of element j (hinged to it); last, the tip element's distal end (the knot, A_6). Nodes in
+    ``exclude`` (the clamp's) are left out: on a deeply cut base element the zone's top reaches
+    into the mount.
     """
     g = p.finger
     tol = 1e-9
     out = []
+    keep = (lambda n: n) if exclude is None else (lambda n: n[~np.isin(n, exclude)])
     for j in range(1, g.n_segments):
         origin = np.array([j * g.pitch, 0.0, g.hinge_z])
         nb, ub = _element_u(p, mesh, j - 1)
         na, ua = _element_u(p, mesh, j)
-        out.append((nb[ub >= 1.0 - ZONE_FRACTION - tol], origin, -1))
-        out.append((na[ua <= ZONE_FRACTION + tol], origin, len(out) - 1))
+        out.append((keep(nb[ub >= 1.0 - ZONE_FRACTION - tol]), origin, -1))
+        out.append((keep(na[ua <= ZONE_FRACTION + tol]), origin, len(out) - 1))
     nt, ut = _element_u(p, mesh, g.n_segments - 1)
-    out.append((nt[ut >= 1.0 - ZONE_FRACTION - tol], np.array([g.length, 0.0, g.hole_height]), -1))
+    out.append((keep(nt[ut >= 1.0 - ZONE_FRACTION - tol]), np.array([g.length, 0.0, g.hole_height]),
+                -1))
     return out
 
 
@@ -196,11 +201,11 @@ class FmbsFinger(ReferenceFinger):
         owner = np.full(len(pts), "", dtype=object)
         owner[self.pinned] = "world"
         origins: dict[str, np.ndarray] = {"world": np.zeros(3)}
-        zones = rigid_zones(p, mesh)
+        zones = rigid_zones(p, mesh, exclude=self.pinned)
         hinge_bodies = []
         for j in range(1, g.n_segments):
             (before, origin, _), (after, _, _) = zones[2 * j - 2], zones[2 * j - 1]
-            if np.isin(before, self.pinned).any() or np.isin(after, self.pinned).any():
+            if len(after) == 0 or np.isin(after, self.pinned).any():
                 raise ValueError("reference.clamp_length: the clamp reaches the first bridge")
             for name, nodes in ((f"L{j}", before), (f"R{j}", after)):
                 owner[nodes] = name

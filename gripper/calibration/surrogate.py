@@ -45,7 +45,7 @@ from gripper.params import GripperParams
 DIMENSIONS = ("finger.cut_angle_deg", "finger.bridge_thickness", "finger.hole_height",
               "finger.pitch")
 # The default studies' ranges (models/studies/*.toml), widened to whole design values.
-DEFAULT_RANGES = {"finger.cut_angle_deg": (30.0, 55.0), "finger.bridge_thickness": (0.002, 0.004),
+DEFAULT_RANGES = {"finger.cut_angle_deg": (30.0, 52.0), "finger.bridge_thickness": (0.0019, 0.004),
                   "finger.hole_height": (0.010, 0.014), "finger.pitch": (0.0137, 0.032)}
 DEFAULT_POINTS = 40
 SURROGATE_FILE = (Path(__file__).resolve().parents[2] / "models" / "studies"
@@ -91,6 +91,10 @@ class StiffnessSurrogate:
         default_stiffness: K_eq of the default design [N·m/rad].
         coefficients: of the polynomial features.
         loo_error: leave-one-out relative errors of K_eq at each sample [-].
+        correction: the mesh-convergence correction (see :func:`correction_model`):
+            ``points`` (bridge thickness [m], correction factor [-]), the fitted ``slope`` and
+            ``intercept`` of ln(factor) against ln(t / 3 mm), and ``checks`` (designs off the
+            bridge axis with their measured and modelled factors).
     """
 
     ranges: dict
@@ -99,12 +103,16 @@ class StiffnessSurrogate:
     default_stiffness: float
     coefficients: np.ndarray
     loo_error: np.ndarray
+    correction: dict
 
     @classmethod
     def build(cls, params: GripperParams | None = None, ranges: dict | None = None,
-              points: int = DEFAULT_POINTS, seed: int = 0, on_progress=None
-              ) -> StiffnessSurrogate:
-        """Solve the reference at a Latin hypercube of ``points`` designs and the centre; fit."""
+              points: int = DEFAULT_POINTS, seed: int = 0, correction: dict | None = None,
+              on_progress=None) -> StiffnessSurrogate:
+        """Solve the reference at a Latin hypercube of ``points`` designs and the centre; fit.
+
+        ``correction``: a :func:`correction_model` result (none: ratios of the default mesh's
+        raw solves)."""
         from scipy.stats import qmc
 
         p = (params or GripperParams()).validate()
@@ -135,7 +143,7 @@ class StiffnessSurrogate:
         loo = (y - F @ coef) / (1.0 - np.diag(H))
         return cls(ranges={d: list(rng[d]) for d in DIMENSIONS}, samples=x, stiffness=k,
                    default_stiffness=float(k0), coefficients=coef,
-                   loo_error=np.expm1(np.abs(loo)))
+                   loo_error=np.expm1(np.abs(loo)), correction=correction or {})
 
     def predict(self, values: dict, base: GripperParams | None = None) -> float:
         """K_eq [N·m/rad] of the base design with ``values`` (dotted keys) changed.
@@ -156,7 +164,15 @@ class StiffnessSurrogate:
             if key not in DIMENSIONS:
                 raise ValueError(f"{key}: not a dimension of the stiffness surrogate "
                                  f"({', '.join(DIMENSIONS)})")
-        return float(np.exp(_features(np.array([x])) @ self.coefficients)[0])
+        raw = float(np.exp(_features(np.array([x])) @ self.coefficients)[0])
+        return raw * self.correction_factor(x[1])
+
+    def correction_factor(self, bridge_thickness: float) -> float:
+        """The default mesh's stiffness correction at this bridge [-] (1 without a model)."""
+        if not self.correction:
+            return 1.0
+        c = self.correction
+        return math.exp(c["intercept"] + c["slope"] * math.log(bridge_thickness / 0.003))
 
     def ratio(self, values: dict, base: GripperParams | None = None) -> float:
         """K_eq at the changed design over K_eq at the base design [-]."""
@@ -168,7 +184,7 @@ class StiffnessSurrogate:
                 "default_stiffness_Nm_per_rad": self.default_stiffness,
                 "coefficients": self.coefficients.tolist(),
                 "loo_error": self.loo_error.tolist(),
-                "loo_error_max": float(self.loo_error.max())}
+                "loo_error_max": float(self.loo_error.max()), "correction": self.correction}
 
     def save(self, path: str | Path = SURROGATE_FILE) -> Path:
         path = Path(path)
@@ -190,12 +206,51 @@ class StiffnessSurrogate:
                    stiffness=np.asarray(d["stiffness_Nm_per_rad"]),
                    default_stiffness=float(d["default_stiffness_Nm_per_rad"]),
                    coefficients=np.asarray(d["coefficients"]),
-                   loo_error=np.asarray(d["loo_error"]))
+                   loo_error=np.asarray(d["loo_error"]), correction=d.get("correction") or {})
 
     @classmethod
     def load_default(cls) -> StiffnessSurrogate:
         return cls.load(SURROGATE_FILE)
 
 
-__all__ = ["DEFAULT_RANGES", "DIMENSIONS", "SURROGATE_FILE", "StiffnessSurrogate",
+def correction_model(params: GripperParams | None = None,
+                     bridges: tuple[float, ...] = (0.0019, 0.0025, 0.003, 0.004),
+                     checks: tuple[dict, ...] = ({"finger.cut_angle_deg": 30.0},
+                                                 {"finger.cut_angle_deg": 55.0}),
+                     known: dict | None = None, on_progress=None) -> dict:
+    """The default mesh's stiffness correction (``f_default / f_extrapolated`` of a full
+    convergence study, :func:`~gripper.calibration.convergence.mesh_convergence`) as a power
+    law of the bridge thickness, the dimension it depends on most (the cells along x stay
+    2.3 mm while the singular apex's bridge thins), fitted through full studies at ``bridges``;
+    ``checks`` are designs off that axis, reported with the law's error there.
+    Each study takes about 3.5 minutes on one core; ``known`` maps bridge thicknesses already
+    studied to their factors."""
+    from gripper.calibration.convergence import mesh_convergence
+
+    p = (params or GripperParams()).validate()
+    say = on_progress or (lambda msg: None)
+
+    def factor(values: dict) -> float:
+        c = mesh_convergence(_design(p, values).validate()).stiffness_correction
+        say(f"correction at {values}: {c:.4f}")
+        return c
+
+    known = known or {}
+    pts = [(t, known[t] if t in known else factor({"finger.bridge_thickness": t}))
+           for t in bridges]
+    lt = np.log(np.array([t for t, _ in pts]) / 0.003)
+    lc = np.log(np.array([c for _, c in pts]))
+    slope, intercept = np.polyfit(lt, lc, 1)
+    model = {"points": [list(q) for q in pts], "slope": float(slope),
+             "intercept": float(intercept), "checks": []}
+    for values in checks:
+        t = values.get("finger.bridge_thickness", p.finger.bridge_thickness)
+        measured = factor(values)
+        modelled = math.exp(intercept + slope * math.log(t / 0.003))
+        model["checks"].append({"design": values, "measured": measured, "modelled": modelled,
+                                "error": modelled / measured - 1.0})
+    return model
+
+
+__all__ = ["correction_model", "DEFAULT_RANGES", "DIMENSIONS", "SURROGATE_FILE", "StiffnessSurrogate",
            "equivalent_stiffness_raw"]
