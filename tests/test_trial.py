@@ -160,12 +160,14 @@ def test_flex_strain_is_read_at_every_step(name):
 
 def test_bag_pack_does_not_sink_through_the_film():
     """The rigid pack and the film it presses on touch as stiffly as fingers and film: with the
-    palm at grasp height and the cables reeled in (0.6 s, about 15 N per finger), no pack-film
+    palm at grasp height and the cables reeled in (0.6 s, 3-5 N per finger), no pack-film
     contact goes deeper than twice the film's collision radius (the film is 50 µm thick; its
     collision shell is 0.7 mm). With MuJoCo's default on the pack's side the pack sank 8-14 mm
     into the film here, and 10-17 mm in full trials."""
     m, probe, _, f = _close_on("bag", at_grasp_height=True)
-    assert (probe.finger_forces(f) > 5.0).all()  # the fingers do squeeze the pack
+    # The fingers do press on the pack (3-5 N each with the calibrated springs of 0.6.0; 15 N
+    # with 0.5.x's stiff springs, see docs/calibration.md on the bag).
+    assert (probe.finger_forces(f) > 2.0).all()
     pack = m.geom("object_contents_geom").id
     depth = [-f.contact[i].dist for i in range(f.ncon)
              if pack in f.contact[i].geom and (f.contact[i].flex >= 0).any()]

@@ -294,20 +294,39 @@ class FmbsFinger(ReferenceFinger):
         mujoco.mj_forward(m, self.data)
 
         self.knot_body = self.model.body("knot").id
+        # Rigid-zone body of every zone node (-1 elsewhere): the cable's equivalent forces on
+        # such nodes act on their body.
+        self.zone_body_of_node = np.full(len(pts), -1)
+        for name in set(owner[i] for i in range(len(pts))):
+            if name.startswith(("L", "R")) or name == "knot":
+                idx = [i for i in range(len(pts)) if owner[i] == name]
+                self.zone_body_of_node[idx] = self.model.body(name).id
 
     def node_positions(self) -> np.ndarray:
         return self.data.flexvert_xpos.copy()
 
     def apply_cable(self, tension: float, pos: np.ndarray) -> float:
-        """As the continuum reference's, but the knot's force acts on the rigid knot body at
-        the channel rim's centroid (force and its moment about the body's centre of mass)."""
-        length = super().apply_cable(tension, pos)  # the knot's nodes have no body of their own
+        """The continuum reference's equivalent forces (net cable force at each via, spread
+        equally over its nodes), with the shares of nodes in a rigid zone applied to the zone's
+        body at the node (force and its moment about the body's centre of mass). Dropping them
+        would break the balance that gives every hinge the cable's moment T·lever."""
+        length = super().apply_cable(tension, pos)  # the nodes with bodies of their own
         path = np.vstack([self.guide] + [self.centroid(grp, pos) for grp in self.groups])
-        last = path[-1] - path[-2]
-        force = -tension * self.load_share * last / np.linalg.norm(last)
-        arm = path[-1] - self.data.xipos[self.knot_body]
-        self.data.xfrc_applied[self.knot_body, :3] = force
-        self.data.xfrc_applied[self.knot_body, 3:] = np.cross(arm, force)
+        seg = np.diff(path, axis=0)
+        u = seg / np.linalg.norm(seg, axis=1)[:, None]
+        xf = self.data.xfrc_applied
+        zones = np.unique(self.zone_body_of_node[self.zone_body_of_node >= 0])
+        xf[zones] = 0.0
+        for k, grp in enumerate(self.groups):
+            u_out = u[k + 1] if k + 1 < len(u) else np.zeros(3)
+            force = tension * (u_out - u[k])
+            share = self.load_share * self.weight[grp] / self.weight[grp].sum()
+            bodies = self.zone_body_of_node[grp]
+            for i in np.flatnonzero(bodies >= 0):
+                b = bodies[i]
+                f = share[i] * force
+                xf[b, :3] += f
+                xf[b, 3:] += np.cross(pos[grp[i]] - self.data.xipos[b], f)
         return length
 
 
