@@ -61,6 +61,22 @@ GCI_SAFETY_FACTOR = 1.25  # -, Celik et al. (2008) for three or more grids
 DEFAULT_SCALES = (1, 2, 3, 4)  # the default mesh and three systematically refined ones
 
 
+def rigid_body_modes(doflocs: np.ndarray) -> np.ndarray:
+    """The six rigid-body modes (three translations, three rotations about the origin) of a 3D
+    elasticity dof layout that interleaves x, y, z, from each dof's location (shape (3, ndofs)):
+    the near-null space smoothed aggregation needs. Shape (ndofs, 6)."""
+    n = doflocs.shape[1]
+    comp = np.arange(n) % 3
+    x, y, z = doflocs
+    B = np.zeros((n, 6))
+    for c in range(3):
+        B[comp == c, c] = 1.0
+    for k, (c1, v1, c2, v2) in enumerate(((0, -y, 1, x), (1, -z, 2, y), (2, -x, 0, z))):
+        B[comp == c1, 3 + k] = v1[comp == c1]
+        B[comp == c2, 3 + k] = v2[comp == c2]
+    return B
+
+
 def solve_clamped(K, f: np.ndarray, fixed: np.ndarray, doflocs: np.ndarray,
                   rtol: float = 1e-10) -> np.ndarray:
     """``K u = f`` with ``u = 0`` on the dofs ``fixed``, for a 3D elasticity matrix whose dofs
@@ -72,15 +88,7 @@ def solve_clamped(K, f: np.ndarray, fixed: np.ndarray, doflocs: np.ndarray,
     n = K.shape[0]
     free = np.setdiff1d(np.arange(n), fixed)
     A = K[free][:, free].tocsr()
-    comp = np.arange(n) % 3
-    x, y, z = doflocs
-    B = np.zeros((n, 6))
-    for c in range(3):
-        B[comp == c, c] = 1.0
-    for k, (c1, v1, c2, v2) in enumerate(((0, -y, 1, x), (1, -z, 2, y), (2, -x, 0, z))):
-        B[comp == c1, 3 + k] = v1[comp == c1]
-        B[comp == c2, 3 + k] = v2[comp == c2]
-    ml = pyamg.smoothed_aggregation_solver(A, B=B[free])
+    ml = pyamg.smoothed_aggregation_solver(A, B=rigid_body_modes(doflocs)[free])
     sol, info = cg(A, f[free], rtol=rtol, maxiter=5000, M=ml.aspreconditioner())
     if info != 0:
         raise RuntimeError(f"linear solve: conjugate gradients did not converge (info {info})")
@@ -203,14 +211,7 @@ def _solve_fmbs(p: GripperParams, fm, K, f: np.ndarray, fixed: np.ndarray, basis
     import pyamg
     from scipy.sparse.linalg import cg
 
-    comp = np.arange(n) % 3
-    x, y, z = basis.doflocs
-    B = np.zeros((n, 6))
-    for c in range(3):
-        B[comp == c, c] = 1.0
-    for k, (c1, v1, c2, v2) in enumerate(((0, -y, 1, x), (1, -z, 2, y), (2, -x, 0, z))):
-        B[comp == c1, 3 + k] = v1[comp == c1]
-        B[comp == c2, 3 + k] = v2[comp == c2]
+    B = rigid_body_modes(basis.doflocs)
     PtP = (P.T @ P).tocsc()
     Br = np.column_stack([spsolve(PtP, P.T @ B[:, i]) for i in range(6)])
     ml = pyamg.smoothed_aggregation_solver(Kr, B=Br)
