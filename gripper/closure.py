@@ -221,7 +221,7 @@ def tune_closure_limits(spec: mujoco.MjSpec, p: GripperParams, model: mujoco.MjM
 
 
 # Overrun past closure at which the discrete integrator's closed cuts are matched to their design
-# [rad]: mid-way to the stall's (about 8.5°); the match then holds within 0.3° from 2° to 9°.
+# [rad]: the match then holds within 0.3° from 2° to 7° (default design; its lock is 8.9° past closure).
 MATCH_OVERRUN = 6.0 * DEG
 MATCH_TOLERANCE = 0.05 * DEG  # rad
 MATCH_SETTLE = 1.0  # s of simulated time to rest (the slowest hinge is at rest within 1e-6 rad/s)
@@ -265,7 +265,7 @@ def match_discrete_closure(model: mujoco.MjModel, p: GripperParams, ids: np.ndar
     5.3° (0.5 ms) to 3.3° (2 ms) on the distal hinge, 1.8 times too stiff. So, for that
     integrator, each hinge's time constant is scaled by sqrt(designed / reached overrun) (the
     stop's stiffness goes as 1/tau²) until every hinge rests within 0.05° of ``MATCH_OVERRUN``;
-    the impedance curve is kept, and with it the stiffening (checked at 2° and 9°: within 0.3°).
+    the impedance curve is kept, and with it the stiffening (checked at 2° and 7°: within 0.3°; 1° short of the default design's lock, at 8°, 1.4° off).
     Edits ``model``'s ``jnt_solref`` and returns the time constants.
     """
     for _ in range(iterations):

@@ -169,7 +169,7 @@ class FingerGeometry(_Replace):
 
         The hinge turns about the bridge's neutral axis (``hinge_z``), below the cut's apex, so
         the faces meet first at the grasping face: theta = 2·atan(w / (height - hinge_z)), w the
-        cut's half-opening there. Slightly less than ``cut_angle_deg`` (41.3° for the default).
+        cut's half-opening there. Slightly less than ``cut_angle_deg`` (42.7° for the default).
         """
         return 2.0 * math.degrees(math.atan(self.cut_half_width / (self.height - self.hinge_z)))
 
@@ -262,8 +262,8 @@ class HingeSprings(_Replace):
             cut meet (see :mod:`gripper.closure`):
 
             - ``"teeth"`` (default): the silicone teeth on either side of the cut are
-              squeezed, a neo-Hookean solid of the finger's Young's modulus: 1.72 N·m/rad for
-              the default design at small overrun, stiffening fivefold by 11.2° as the thin tips
+              squeezed, a neo-Hookean solid of the finger's Young's modulus: 2.25 N·m/rad for
+              the default design at small overrun, stiffening fivefold by 8.2° as the thin tips
               are squashed (:mod:`gripper.closure`). Independent of the time step, so grasp
               results are too.
             - ``"stiffness"``: a linear compliant stop of ``closure_stiffness``.
