@@ -265,7 +265,8 @@ def match_discrete_closure(model: mujoco.MjModel, p: GripperParams, ids: np.ndar
     5.3° (0.5 ms) to 3.3° (2 ms) on the distal hinge, 1.8 times too stiff. So, for that
     integrator, each hinge's time constant is scaled by sqrt(designed / reached overrun) (the
     stop's stiffness goes as 1/tau²) until every hinge rests within 0.05° of ``MATCH_OVERRUN``;
-    the impedance curve is kept, and with it the stiffening (checked at 2° and 7°: within 0.3°; 1° short of the default design's lock, at 8°, 1.4° off).
+    the impedance curve is kept, and with it the stiffening (checked at 2° and 7°: within 0.3°;
+    at 8°, within a degree of the default design's lock, 1.4° off).
     Edits ``model``'s ``jnt_solref`` and returns the time constants.
     """
     for _ in range(iterations):
