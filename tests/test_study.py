@@ -138,6 +138,13 @@ def test_geometry_points_get_the_continuum_surrogate():
     assert reasons == [] and p.springs.stiffness[0] == pytest.approx(2 * base.springs.stiffness[0])
 
 
+def test_committed_surrogate_is_of_the_default_design():
+    from gripper.calibration.surrogate import StiffnessSurrogate, equivalent_stiffness_raw
+
+    s = StiffnessSurrogate.load_default()
+    assert s.default_stiffness == pytest.approx(equivalent_stiffness_raw(GripperParams()), rel=1e-6)
+
+
 def test_blocked_force_grows_with_shortening():
     p = GripperParams()
     assert 0.0 < blocked_tip_force(p, 0.05) < blocked_tip_force(p, 0.15)
