@@ -110,7 +110,9 @@ def test_corrected_flex_has_the_extrapolated_compliance():
     f0 = COMMITTED.settings["convergence"]["extrapolated_compliance_deg_per_N"]
     p = GripperParams()
     p = p.replace(material=replace(p.material, youngs_modulus=p.material.youngs_modulus * factor))
-    flex = static_bend(p, tension=0.01)["bending_angle_deg"] / 0.01
+    # A small load: at 0.01 N the corrected finger bends 17° and its geometric nonlinearity adds
+    # 3 % (measured 1703 deg/N); at 0.0025 N it bends about 4°.
+    flex = static_bend(p, tension=0.0025, rest_tol_deg=0.005)["bending_angle_deg"] / 0.0025
     assert flex == pytest.approx(f0, rel=0.02)
 
 
@@ -121,10 +123,12 @@ def test_quadratic_elements_agree_with_the_extrapolated_reference():
     pytest.importorskip("gmsh")
     from gripper.calibration.quadratic_check import quadratic_compliance
 
-    sizes = (3.0e-3, 2.0e-3, 1.5e-3)
+    sizes = (3.0, 2.0, 1.5)  # mm
     t = GripperParams().finger.bridge_thickness
-    # Apex cells a fixed fraction of the bridge (0.2 t at the coarsest), as in docs/calibration.md.
-    f = tuple(quadratic_compliance(size=s, bridge_size=0.2 * t * s / sizes[0])["compliance_deg_per_N"]
+    # Apex cells a fixed fraction of the bridge (0.2 t at the coarsest), computed exactly as for
+    # docs/calibration.md: the extrapolation is sensitive to the finest mesh (a last-digit change
+    # of its apex size, remeshed by gmsh, moved it by 1.2 %).
+    f = tuple(quadratic_compliance(size=s * 1e-3, bridge_size=0.2 * t * s / 3.0)["compliance_deg_per_N"]
               for s in sizes)
     p2 = richardson(tuple(s / sizes[0] for s in sizes), f).extrapolated
     f0 = COMMITTED.settings["convergence"]["extrapolated_compliance_deg_per_N"]
