@@ -121,7 +121,8 @@ class FingerGeometry(_Replace):
             96 mm fingers, about the size of the paper's photographed gripper fingers.
         width: element width across the finger (y) [m]. Assumed 16 mm.
         height: element height from back to grasping face (z) [m]. Assumed 18 mm: room for
-            a 3 mm bridge, a 6 mm hole and 3 mm of wall on the grasping face.
+            a bridge of a few mm (1.9 mm, below), a 6 mm hole and 3 mm of wall on the grasping
+            face.
         cut_angle_deg: opening angle of each triangular cut [deg] (paper 000 §II: 45°). A hinge
             stops where its cut closes (:attr:`closure_angle_deg`).
         bridge_thickness: silicone left under each cut [m]. 1.9 mm: the bridge at which the
