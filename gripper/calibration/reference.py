@@ -370,18 +370,25 @@ class ReferenceFinger:
         seg = np.diff(path, axis=0)
         lengths = np.linalg.norm(seg, axis=1)
         u = seg / lengths[:, None]
-        xf = self.data.xfrc_applied
-        xf[:, :3] = 0.0
+        self._clear_cable_forces()
         for k, grp in enumerate(self.groups):
             u_out = u[k + 1] if k + 1 < len(u) else np.zeros(3)
             force = tension * (u_out - u[k])
             # Equal shares per node of the whole body; a plane node carries half of its share.
             share = self.load_share * self.weight[grp] / self.weight[grp].sum()
-            bodies = self.body_of_node[grp]
-            moving = bodies >= 0
-            if moving.any():
-                xf[bodies[moving], :3] += share[moving, None] * force
+            self._apply_node_forces(grp, share[:, None] * force, pos)
         return float(lengths.sum())
+
+    def _clear_cable_forces(self) -> None:
+        self.data.xfrc_applied[:, :3] = 0.0
+
+    def _apply_node_forces(self, nodes: np.ndarray, forces: np.ndarray, pos: np.ndarray) -> None:
+        """Add ``forces`` [N] (one row per node) on ``nodes``; those without a body of their
+        own (pinned) take none."""
+        bodies = self.body_of_node[nodes]
+        moving = bodies >= 0
+        if moving.any():
+            self.data.xfrc_applied[bodies[moving], :3] += forces[moving]
 
     def measure(self, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Element angles [rad] (B1..Bn) and the tip point's x, z [m]."""
