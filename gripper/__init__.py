@@ -9,7 +9,7 @@ Video, pictures and design studies:
 
     >>> from gripper import record_trial_video, load_study, run_study               # doctest: +SKIP
     >>> record_trial_video("balloon", "balloon.mp4", camera="track")               # doctest: +SKIP
-    >>> run_study(load_study("models/studies/one_at_a_time.toml"), "runs/oat")      # doctest: +SKIP
+    >>> run_study(load_study("gripper/data/studies/one_at_a_time.toml"), "runs/oat")      # doctest: +SKIP
 
 Calibration of the hinge springs against the flex reference finger or bench data:
 
@@ -28,43 +28,84 @@ The Gymnasium environment ``SoftGripperGrasp-v1`` is registered on import:
     >>> import gymnasium as gym
     >>> env = gym.make("gripper:SoftGripperGrasp-v1", objects="block")   # doctest: +SKIP
 """
-from gripper.render import choose_gl_backend
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+from gripper.render.backend import choose_gl_backend
 
 choose_gl_backend()  # before anything imports mujoco: headless EGL unless MUJOCO_GL is set
 
-from gripper.bench import BenchConfig, run_benchmark, wilson_interval
-from gripper.calibration.calfile import Calibration, apply_calibration, design_hash
-from gripper.calibration.fit import FitConfig, fit_hinges
-from gripper.calibration.pipeline import calibrate
-from gripper.calibration.reference import ReferenceConfig, run_reference
-from gripper.crush import crush_test
-from gripper.env import SoftGripperGraspEnv
-from gripper.figures import bending_figure, success_plot
-from gripper.model import build_bending_spec, build_gripper_spec, build_scene_spec
-from gripper.objects import GraspObject, Placement, get_object, mesh_object
-from gripper.params import GripperParams
-from gripper.protocol import GraspProtocol, TrialNoise
-from gripper.study import load_study, run_study
-from gripper.trial import run_pullout, run_trial
-from gripper.video import record_trial_video
+# The public API, imported on first use (``import gripper`` stays quick): name -> module.
+_EXPORTS = {
+    "GripperParams": "gripper.core.params",
+    "build_gripper_spec": "gripper.model.builders",
+    "build_scene_spec": "gripper.model.builders",
+    "build_bending_spec": "gripper.model.builders",
+    "GraspObject": "gripper.objects.library",
+    "Placement": "gripper.objects.library",
+    "get_object": "gripper.objects.library",
+    "mesh_object": "gripper.objects.library",
+    "GraspProtocol": "gripper.experiments.protocol",
+    "TrialNoise": "gripper.experiments.protocol",
+    "run_trial": "gripper.experiments.trial",
+    "run_pullout": "gripper.experiments.pullout",
+    "crush_test": "gripper.experiments.crush",
+    "BenchConfig": "gripper.bench.benchmark",
+    "run_benchmark": "gripper.bench.benchmark",
+    "wilson_interval": "gripper.bench.benchmark",
+    "SoftGripperGraspEnv": "gripper.envs.grasp_env",
+    "record_trial_video": "gripper.render.video",
+    "bending_figure": "gripper.render.figures",
+    "success_plot": "gripper.render.figures",
+    "load_study": "gripper.studies.study",
+    "run_study": "gripper.studies.study",
+    "Calibration": "gripper.calibration.calfile",
+    "apply_calibration": "gripper.calibration.calfile",
+    "design_hash": "gripper.calibration.calfile",
+    "FitConfig": "gripper.calibration.fit",
+    "fit_hinges": "gripper.calibration.fit",
+    "calibrate": "gripper.calibration.pipeline",
+    "ReferenceConfig": "gripper.calibration.reference",
+    "run_reference": "gripper.calibration.reference",
+}
+__all__ = [*_EXPORTS, "__version__"]
 
-__all__ = ["GripperParams", "build_gripper_spec", "build_scene_spec", "build_bending_spec",
-           "GraspObject", "Placement", "get_object", "mesh_object", "GraspProtocol", "TrialNoise",
-           "run_trial", "run_pullout", "BenchConfig", "run_benchmark", "wilson_interval",
-           "SoftGripperGraspEnv", "record_trial_video", "bending_figure", "success_plot", "load_study",
-           "run_study", "Calibration", "apply_calibration", "design_hash", "FitConfig", "fit_hinges",
-           "calibrate", "ReferenceConfig", "run_reference", "crush_test"]
-__version__ = "0.6.0"
+if TYPE_CHECKING:  # static checkers and IDEs see the real names
+    from gripper.bench.benchmark import BenchConfig, run_benchmark, wilson_interval
+    from gripper.calibration.calfile import Calibration, apply_calibration, design_hash
+    from gripper.calibration.fit import FitConfig, fit_hinges
+    from gripper.calibration.pipeline import calibrate
+    from gripper.calibration.reference import ReferenceConfig, run_reference
+    from gripper.core.params import GripperParams
+    from gripper.envs.grasp_env import SoftGripperGraspEnv
+    from gripper.experiments.crush import crush_test
+    from gripper.experiments.protocol import GraspProtocol, TrialNoise
+    from gripper.experiments.pullout import run_pullout
+    from gripper.experiments.trial import run_trial
+    from gripper.model.builders import build_bending_spec, build_gripper_spec, build_scene_spec
+    from gripper.objects.library import GraspObject, Placement, get_object, mesh_object
+    from gripper.render.figures import bending_figure, success_plot
+    from gripper.render.video import record_trial_video
+    from gripper.studies.study import load_study, run_study
 
 
-def _register_envs() -> None:
-    import gymnasium
+def __getattr__(name: str) -> Any:
+    if name == "__version__":
+        from gripper.core.provenance import package_version
 
-    if "SoftGripperGrasp-v1" not in gymnasium.registry:
-        gymnasium.register(
-            id="SoftGripperGrasp-v1", entry_point="gripper.env:SoftGripperGraspEnv",
-            vector_entry_point="gripper.vector_env:SoftGripperGraspVectorEnv",
-            max_episode_steps=300)
+        return package_version()
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(_EXPORTS[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'gripper' has no attribute {name!r}")
 
 
-_register_envs()
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
+
+
+from gripper.envs.registration import register_envs  # noqa: E402
+
+register_envs()

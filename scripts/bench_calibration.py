@@ -16,12 +16,12 @@ import statistics
 import time
 from pathlib import Path
 
-from gripper.bending import BendingConfig, run_bending_test
 from gripper.calibration.calfile import apply_calibration
 from gripper.calibration.fit import FitConfig, fit_hinges
 from gripper.calibration.fmbs import FmbsConfig
 from gripper.calibration.pipeline import calibrate
-from gripper.params import GripperParams
+from gripper.core.params import GripperParams
+from gripper.experiments.bending import BendingConfig, run_bending_test
 
 KINDS = {"continuum": ("continuum", None),
          "fmbs_per_degree": ("fmbs", FmbsConfig(reading="per_degree")),

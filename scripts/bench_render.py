@@ -12,8 +12,8 @@ import tempfile
 import time
 
 import gripper  # noqa: F401  (chooses the headless GL backend before mujoco is imported)
-from gripper.trial import run_trial
-from gripper.video import FrameRecorder, record_trial_video, render_frames
+from gripper.experiments.trial import run_trial
+from gripper.render.video import FrameRecorder, record_trial_video, render_frames
 
 
 def main() -> None:

@@ -17,11 +17,12 @@ import mujoco
 import numpy as np
 from mujoco import rollout
 
-from gripper.bending import BendingConfig, run_bending_test
-from gripper.model import build_scene_spec
-from gripper.params import GripperParams
-from gripper.protocol import GraspProtocol
-from gripper.trial import grasp_scene_spec, run_trial
+from gripper.core.params import GripperParams
+from gripper.experiments.bending import BendingConfig, run_bending_test
+from gripper.experiments.protocol import GraspProtocol
+from gripper.experiments.trial import run_trial
+from gripper.model.builders import build_scene_spec
+from gripper.sim.scene import grasp_scene_spec
 
 
 def _scene(p: GripperParams, discrete: bool) -> mujoco.MjModel:

@@ -11,7 +11,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from gripper.study import load_study, run_study
+from gripper.studies.study import load_study, run_study
 
 STUDY = """
 [study]

@@ -1,6 +1,6 @@
 """Trial-runner overhead against plain ``mj_step`` on the same model and controls, side by side.
 
-For each object: one scripted trial through :func:`gripper.trial.run_trial` (rollout chunks,
+For each object: one scripted trial through :func:`gripper.experiments.trial.run_trial` (rollout chunks,
 stability/slip/force checks), then the same compiled model stepped with ``mj_step`` under the
 same open-loop controls, recorded from the trial. Medians of --repeats runs.
 
@@ -14,10 +14,12 @@ import time
 import mujoco
 import numpy as np
 
-import gripper.trial as T
-from gripper.objects import get_object
-from gripper.params import GripperParams
-from gripper.protocol import GraspProtocol
+import gripper.experiments.trial as T
+from gripper.core.params import GripperParams
+from gripper.experiments.protocol import GraspProtocol, TrialNoise
+from gripper.objects.library import get_object
+from gripper.sim.scene import build_grasp_scene
+from gripper.sim.stepping import ChunkStepper
 
 
 def main() -> None:
@@ -31,21 +33,21 @@ def main() -> None:
         ratios, runner, plain = [], [], []
         for _ in range(args.repeats):
             controls = []
-            real_step = T._Stepper.step
+            real_step = ChunkStepper.step
 
             def spy(self, u, controls=controls, real_step=real_step):
                 controls.append(np.array(u))
                 return real_step(self, u)
-            T._Stepper.step = spy
+            ChunkStepper.step = spy
             t0 = time.perf_counter()
             rec = T.run_trial(obj, 0, 0, protocol=proto)
             t_runner = time.perf_counter() - t0
-            T._Stepper.step = real_step
+            ChunkStepper.step = real_step
             p = GripperParams()
             p = p.replace(sim=p.sim.replace(timestep=proto.timestep))
             u = np.concatenate(controls)
             t0 = time.perf_counter()
-            m2 = T.build_grasp_scene(p, obj, T.sample_placement(obj, T.TrialNoise(), 0, 0))
+            m2 = build_grasp_scene(p, obj, T.sample_placement(obj, TrialNoise(), 0, 0))
             d = mujoco.MjData(m2)
             for row in u:
                 d.ctrl[:] = row

@@ -1,11 +1,11 @@
-"""Write the example bench CSV (``models/calibration/example_bench.csv``) from a reference run.
+"""Write the example bench CSV (``gripper/data/calibration/example_bench.csv``) from a reference run.
 
 Takes the ``reference.json`` that ``gripper calibrate`` writes next to the calibration file and
 keeps the end of each tension hold (the quasi-static points), with the angles rounded to 0.1°
 and the tip to 0.1 mm, as a protractor and a ruler would read them. Not a physical measurement.
 
 Run: .venv/bin/python scripts/make_example_bench.py runs/calibration/reference.json \\
-         models/calibration/example_bench.csv
+         gripper/data/calibration/example_bench.csv
 """
 
 import argparse

@@ -19,7 +19,7 @@ import gymnasium as gym
 import numpy as np
 
 import gripper  # noqa: F401  (registers the environment)
-from gripper.bench import wilson_interval
+from gripper.bench.benchmark import wilson_interval
 
 TIP_CLEARANCE = 0.008   # m, fingertips above the floor at the grasp (as GraspProtocol)
 APPROACH_SPEED = 0.10   # m/s
@@ -105,7 +105,7 @@ if __name__ == "__main__":
     args = ap.parse_args()
     params = None
     if args.params:
-        from gripper.params import GripperParams
+        from gripper.core.params import GripperParams
 
         params = GripperParams.load(args.params)
     run(args.objects.split(","), args.episodes, args.seed, params)

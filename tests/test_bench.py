@@ -9,7 +9,7 @@ import time
 import pytest
 from helpers import kill_after_lines
 
-from gripper.cli import main
+from gripper.cli.main import main
 
 BASE = ["bench", "--objects", "block", "--seed", "7", "--no-progress"]
 
@@ -92,7 +92,7 @@ def test_two_workers_give_the_same_records(reference, tmp_path):
 
 def test_sigkill_then_resume_equals_uninterrupted(reference, tmp_path):
     out = tmp_path / "killed"
-    cmd = [sys.executable, "-m", "gripper.cli", *BASE, "--trials", "4", "--workers", "1", "--out", str(out)]
+    cmd = [sys.executable, "-m", "gripper.cli.main", *BASE, "--trials", "4", "--workers", "1", "--out", str(out)]
     n_before = kill_after_lines(cmd, out / "trials.jsonl", 2)
     assert 2 <= n_before < 4
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

@@ -3,16 +3,16 @@ import json
 import numpy as np
 import pytest
 
-from gripper.bending import BendingConfig, run_bending_test
-from gripper.cli import main
-from gripper.closure import (
+from gripper.cli.main import main
+from gripper.core.params import GripperParams
+from gripper.experiments.bending import BendingConfig, run_bending_test
+from gripper.model.closure import (
     realised_secant_stiffness,
     teeth_closure_stiffness,
     teeth_impedance,
     teeth_lock_angle,
     teeth_moment,
 )
-from gripper.params import GripperParams
 
 
 def _closing_design(closure: str = "rigid"):
@@ -178,9 +178,9 @@ def test_closed_cuts_keep_their_design_under_the_trials_integrator(degrees, tol)
     curve is kept up to 2° short of the lock, 8.9° past closure on the default design)."""
     import mujoco
 
-    from gripper.closure import closed_cut_rest_overrun
-    from gripper.objects import Placement, get_object
-    from gripper.trial import build_grasp_scene
+    from gripper.model.closure import closed_cut_rest_overrun
+    from gripper.objects.library import Placement, get_object
+    from gripper.sim.scene import build_grasp_scene
 
     p = GripperParams()
     p = p.replace(sim=p.sim.replace(timestep=0.002))

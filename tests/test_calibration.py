@@ -16,7 +16,7 @@ from gripper.calibration.fit import FitConfig, HingeSimulator, fit_hinges, simul
 from gripper.calibration.measured import angle_columns, read_measured_csv
 from gripper.calibration.mesh import MeshResolution, channel_side, finger_mesh
 from gripper.calibration.reference import BendingRecord, plateau_indices, tension_schedule
-from gripper.params import FingerGeometry, GripperParams
+from gripper.core.params import FingerGeometry, GripperParams
 
 G = FingerGeometry()
 
@@ -176,7 +176,7 @@ def test_bench_rows_with_closed_cuts_are_refused(tmp_path):
     f.write_text(f"tension_N,{cols}\n" + "\n".join(ok_rows) + "\n30,40,85,130,172,215\n")
     with pytest.raises(ValueError, match=r"row 7: hinge B2-B3 at 45.0°, past the cut's closure angle " + CLOSURE):
         read_measured_csv(f, 6, min_points=5, closure_angle_deg=closure)
-    proc = subprocess.run([sys.executable, "-m", "gripper.cli", "calibrate", "--data", str(f),
+    proc = subprocess.run([sys.executable, "-m", "gripper.cli.main", "calibrate", "--data", str(f),
                            "--out", str(tmp_path / "out")], capture_output=True, text=True)
     assert proc.returncode == 2 and "hinge B2-B3" in proc.stderr
     assert len(proc.stderr.strip().splitlines()) == 1
@@ -208,7 +208,7 @@ def test_bad_csv_one_clear_error(tmp_path, content, message):
     f.write_text(content)
     with pytest.raises(ValueError, match=message.replace("(", r"\(")):
         read_measured_csv(f, 6, min_points=5)
-    proc = subprocess.run([sys.executable, "-m", "gripper.cli", "calibrate", "--data", str(f),
+    proc = subprocess.run([sys.executable, "-m", "gripper.cli.main", "calibrate", "--data", str(f),
                            "--out", str(tmp_path / "out")], capture_output=True, text=True)
     assert proc.returncode == 2
     assert len(proc.stderr.strip().splitlines()) == 1 and message.split(":")[0] in proc.stderr
@@ -236,7 +236,7 @@ def test_calibration_file_round_trip_and_hash_refusal(tmp_path):
 
 
 def _cli(*args):
-    return subprocess.run([sys.executable, "-m", "gripper.cli", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "gripper.cli.main", *args], capture_output=True,
                           text=True)
 
 

@@ -1,4 +1,4 @@
-"""Balloon models are the same numbers in every process (see gripper.canonical)."""
+"""Balloon models are the same numbers in every process (see gripper.sim.canonical)."""
 
 import json
 import subprocess
@@ -7,16 +7,17 @@ import sys
 import numpy as np
 import pytest
 
-import gripper.canonical as canonical
-from gripper.objects import Placement, get_object
-from gripper.params import GripperParams
-from gripper.trial import build_grasp_scene, run_trial
+import gripper.sim.canonical as canonical
+from gripper.core.params import GripperParams
+from gripper.experiments.trial import run_trial
+from gripper.objects.library import Placement, get_object
+from gripper.sim.scene import build_grasp_scene
 
 CHILD = """
 import sys, numpy as np
-from gripper.objects import Placement, get_object
-from gripper.params import GripperParams
-from gripper.trial import build_grasp_scene
+from gripper.objects.library import Placement, get_object
+from gripper.core.params import GripperParams
+from gripper.experiments.trial import build_grasp_scene
 m = build_grasp_scene(GripperParams(), get_object("balloon"), Placement(x=0.004, y=-0.003))
 np.savez(sys.argv[1], flex_stiffness=m.flex_stiffness, body_mass=m.body_mass, dof_M0=m.dof_M0)
 """
@@ -58,7 +59,7 @@ def test_failed_canonical_compile_is_one_clear_error(monkeypatch):
 
 TRIAL_CHILD = """
 import json, sys
-from gripper.trial import run_trial
+from gripper.experiments.trial import run_trial
 rec = run_trial("balloon", seed=0, index=20)
 json.dump({k: v for k, v in rec.items() if k != "wall_time_s"}, open(sys.argv[1], "w"))
 """

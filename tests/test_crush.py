@@ -4,9 +4,9 @@ import math
 
 import pytest
 
-from gripper.cli import main
-from gripper.crush import crush_test
-from gripper.objects import get_object
+from gripper.cli.main import main
+from gripper.experiments.crush import crush_test
+from gripper.objects.library import get_object
 
 
 def test_balloon_stiffness_follows_its_overpressure():

@@ -11,7 +11,7 @@ from gripper.calibration.calfile import Calibration, CalibrationMismatch, apply_
 from gripper.calibration.convergence import linear_compliance, richardson
 from gripper.calibration.mesh import MeshResolution
 from gripper.calibration.pipeline import default_settings, settings_hash, stale_reasons
-from gripper.params import DEFAULT_CALIBRATION_FILE, GripperParams, HingeSprings
+from gripper.core.params import DEFAULT_CALIBRATION_FILE, GripperParams, HingeSprings
 
 COMMITTED = Calibration.load(DEFAULT_CALIBRATION_FILE)
 
@@ -202,7 +202,7 @@ def test_paper_hinge_damping_freezes_the_finger():
 
 
 def test_calibrate_refuses_bad_input_and_writes_nothing(tmp_path, capsys):
-    from gripper.cli import main
+    from gripper.cli.main import main
 
     out = tmp_path / "cal"
     assert main(["calibrate", "--data", str(tmp_path / "missing.csv"), "--out", str(out)]) == 2

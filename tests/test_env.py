@@ -11,7 +11,7 @@ from conftest import needs_gl
 from gymnasium.utils.env_checker import check_env
 
 import gripper  # noqa: F401  (registers the environment)
-from gripper.env import SoftGripperGraspEnv
+from gripper.envs.grasp_env import SoftGripperGraspEnv
 
 ENV_ID = "gripper:SoftGripperGrasp-v1"
 

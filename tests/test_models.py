@@ -1,11 +1,11 @@
 import mujoco
 import pytest
 
-from gripper.closure import teeth_lock_angle
-from gripper.menagerie import REPO_MODELS, generate_model_files, readme_with_table
-from gripper.model import build_scene_spec
-from gripper.params import DEG, GripperParams
-from gripper.smoke import random_control_rollout
+from gripper.core.params import DEG, GripperParams
+from gripper.experiments.smoke import random_control_rollout
+from gripper.model.builders import build_scene_spec
+from gripper.model.closure import teeth_lock_angle
+from gripper.model.menagerie import REPO_MODELS, generate_model_files, readme_with_table
 
 
 def test_committed_models_match_fresh_generation():

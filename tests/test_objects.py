@@ -5,9 +5,9 @@ import math
 import pytest
 import trimesh
 
-from gripper.bench import wilson_interval
-from gripper.objects import DEFAULT_OBJECTS, LIBRARY, Placement, get_object, mesh_object
-from gripper.params import GripperParams
+from gripper.bench.benchmark import wilson_interval
+from gripper.core.params import GripperParams
+from gripper.objects.library import DEFAULT_OBJECTS, LIBRARY, Placement, get_object, mesh_object
 
 
 def test_library_fits_the_aperture_with_placement_noise():
@@ -64,8 +64,8 @@ def test_wilson_interval_known_values():
 
 
 def test_paper_box_shell_is_closed_and_compiles():
-    from gripper.objects import PAPER_BOX_COUNT, box_shell
-    from gripper.trial import build_grasp_scene
+    from gripper.objects.library import PAPER_BOX_COUNT, box_shell
+    from gripper.sim.scene import build_grasp_scene
     obj = get_object("paper_box")
     mesh = box_shell(obj.size, PAPER_BOX_COUNT)
     assert mesh.is_watertight and mesh.volume == pytest.approx(8 * obj.size[0] * obj.size[1] * obj.size[2])

@@ -5,8 +5,8 @@ import sys
 
 import pytest
 
-from gripper.cli import main
-from gripper.params import PAPER_HINGE_STIFFNESS, GripperParams
+from gripper.cli.main import main
+from gripper.core.params import PAPER_HINGE_STIFFNESS, GripperParams
 
 
 def test_defaults_valid_and_from_paper():
@@ -75,7 +75,7 @@ def test_cli_bad_input_exit_code_2_one_line(tmp_path, capsys):
 
 
 def test_cli_console_script_help():
-    out = subprocess.run([sys.executable, "-m", "gripper.cli", "--help"], capture_output=True,
+    out = subprocess.run([sys.executable, "-m", "gripper.cli.main", "--help"], capture_output=True,
                          text=True, check=True).stdout
     for sub in ("bend", "servo", "params", "write-models", "check"):
         assert sub in out

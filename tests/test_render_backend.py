@@ -1,6 +1,6 @@
 """Choice of the headless OpenGL backend (no rendering needed)."""
 
-import gripper.render as R
+import gripper.render.backend as R
 
 
 def test_user_choice_is_kept(monkeypatch):

@@ -7,9 +7,9 @@ import sys
 import pytest
 from helpers import kill_after_lines
 
-from gripper.cli import main
-from gripper.params import GripperParams
-from gripper.study import apply_point, blocked_tip_force, gent_modulus, load_study
+from gripper.cli.main import main
+from gripper.core.params import GripperParams
+from gripper.studies.study import apply_point, blocked_tip_force, gent_modulus, load_study
 
 STUDY = """
 [study]
@@ -69,7 +69,7 @@ def test_two_workers_same_results(study_file, reference, tmp_path):
 
 def test_sigkill_then_resume(study_file, reference, tmp_path):
     out = tmp_path / "killed"
-    cmd = [sys.executable, "-m", "gripper.cli", "study", str(study_file), "--out", str(out), "--workers", "1",
+    cmd = [sys.executable, "-m", "gripper.cli.main", "study", str(study_file), "--out", str(out), "--workers", "1",
            "--no-progress"]
     assert 2 <= kill_after_lines(cmd, out / "results.jsonl", 2) < 5
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -113,7 +113,7 @@ def test_bridge_rule_and_gent():
 def test_closure_match_stable_with_a_higher_hole():
     """With the calibrated soft springs the closed-cut match (closure.match_discrete_closure)
     went unstable for a 14 mm hole while its moment was applied as a step; it is ramped in."""
-    from gripper.trial import run_trial
+    from gripper.experiments.trial import run_trial
 
     p, _ = apply_point(GripperParams(), {"finger.hole_height": 0.014})
     assert run_trial("block", 0, 0, params=p)["status"] == "ok"
@@ -152,12 +152,12 @@ def test_blocked_force_grows_with_shortening():
 
 def test_example_studies_load():
     for name in ("one_at_a_time", "latin_hypercube"):
-        s = load_study(f"models/studies/{name}.toml")
+        s = load_study(f"gripper/data/studies/{name}.toml")
         assert len(s.design_points()) > 5
 
 
 def test_limits_exclude_points_from_recommendations(tmp_path):
-    from gripper.study import recommendations
+    from gripper.studies.study import recommendations
     f = tmp_path / "s.toml"
     f.write_text(STUDY + "at_least = { grasp_block_success_rate = 1.0 }\n")
     study = load_study(f)

@@ -6,11 +6,15 @@ import mujoco
 import numpy as np
 import pytest
 
-import gripper.trial as trial_mod
-from gripper.objects import get_object
-from gripper.params import GripperParams
-from gripper.protocol import GraspProtocol, TrialNoise
-from gripper.trial import run_pullout, run_trial, sample_placement
+import gripper.experiments.trial as trial_mod
+import gripper.sim.probes as probes_mod
+import gripper.sim.scene as scene_mod
+import gripper.sim.stepping as stepping_mod
+from gripper.core.params import GripperParams
+from gripper.experiments.protocol import GraspProtocol, TrialNoise
+from gripper.experiments.pullout import run_pullout
+from gripper.experiments.trial import run_trial, sample_placement
+from gripper.objects.library import get_object
 
 VOLATILE = ("wall_time_s",)
 
@@ -53,7 +57,7 @@ def test_negative_noise_is_refused():
 def _tamper_with_chunk(monkeypatch, n, tamper):
     """Call ``tamper(stepper)`` right after the ``n``-th rollout chunk of every trial."""
     calls = {"n": 0}
-    real = trial_mod._Stepper.step
+    real = stepping_mod.ChunkStepper.step
 
     def step(self, u):
         sens = real(self, u)
@@ -62,7 +66,7 @@ def _tamper_with_chunk(monkeypatch, n, tamper):
             tamper(self)
         return sens
 
-    monkeypatch.setattr(trial_mod._Stepper, "step", step)
+    monkeypatch.setattr(stepping_mod.ChunkStepper, "step", step)
 
 
 def test_unstable_trial_is_an_error_not_a_failure(monkeypatch):
@@ -129,7 +133,7 @@ def _close_on(name, *, at_grasp_height=False):
     obj = get_object(name)
     proto = GraspProtocol()
     p = GripperParams().replace(sim=GripperParams().sim.replace(timestep=proto.timestep))
-    m = trial_mod.build_grasp_scene(p, obj, sample_placement(obj, TrialNoise(), 0, 3))
+    m = scene_mod.build_grasp_scene(p, obj, sample_placement(obj, TrialNoise(), 0, 3))
     d = mujoco.MjData(m)
     u = np.zeros((300, m.nu))
     if at_grasp_height:
@@ -137,12 +141,12 @@ def _close_on(name, *, at_grasp_height=False):
         d.qpos[m.jnt_qposadr[m.joint("lift_z").id]] = z
         u[:, m.actuator("lift_z").id] = z
     mujoco.mj_forward(m, d)
-    probe = trial_mod._Probe(m, obj, p.layout.n_fingers)
-    stepper = trial_mod._Stepper(m, d)
+    probe = probes_mod.ObjectProbe(m, obj, p.layout.n_fingers)
+    stepper = stepping_mod.ChunkStepper(m, d)
     u[:, probe.servo] = 2.0  # close on the object
     stepper.step(u)
     fresh = mujoco.MjData(m)
-    mujoco.mj_setState(m, fresh, stepper.last_states[-1], trial_mod.STATE_SPEC)
+    mujoco.mj_setState(m, fresh, stepper.last_states[-1], stepping_mod.STATE_SPEC)
     mujoco.mj_forward(m, fresh)
     return m, probe, stepper, fresh
 
@@ -175,7 +179,7 @@ def test_bag_pack_does_not_sink_through_the_film():
 
 
 def test_grasp_outcome_does_not_depend_on_the_time_step():
-    """The closed cut's compliance is a material property (gripper.closure), so halving the step
+    """The closed cut's compliance is a material property (gripper.model.closure), so halving the step
     changes the outcome not at all and the squeeze little. With the rigid stop, whose overrun
     grows as the step squared, this cylinder is held at 2 ms and drops out in the hold at 1 ms."""
     recs = [run_trial("cylinder", seed=0, index=1, protocol=GraspProtocol(timestep=dt))

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from conftest import needs_gl
 
-from gripper.protocol import GraspProtocol
-from gripper.video import FrameRecorder, record_trial_video, render_frames
+from gripper.experiments.protocol import GraspProtocol
+from gripper.render.video import FrameRecorder, record_trial_video, render_frames
 
 pytestmark = needs_gl
 
@@ -36,12 +36,12 @@ def test_trial_video_reads_back_with_gripper_in_view(tmp_path):
 
 def test_gripper_is_in_view_of_every_camera_preset():
     rec = FrameRecorder(fps=5)
-    from gripper.trial import run_trial
+    from gripper.experiments.trial import run_trial
     run_trial("block", 0, 0, protocol=SHORT, frame_sink=rec)
     m = rec.model
     gripper_geoms = {g for g in range(m.ngeom)
                      if m.body(m.geom_bodyid[g]).name == "palm" or m.body(m.geom_bodyid[g]).name.startswith("f")}
-    from gripper.render import CAMERAS, SceneRenderer
+    from gripper.render.renderer import CAMERAS, SceneRenderer
     d = mujoco.MjData(m)
     mujoco.mj_setState(m, d, rec.states[len(rec.states) // 2], mujoco.mjtState.mjSTATE_FULLPHYSICS)
     mujoco.mj_forward(m, d)
@@ -56,19 +56,19 @@ def test_gripper_is_in_view_of_every_camera_preset():
 
 def test_gif_output_and_overlay(tmp_path):
     rec = FrameRecorder(fps=5)
-    from gripper.trial import run_trial
+    from gripper.experiments.trial import run_trial
     run_trial("block", 0, 0, protocol=SHORT, frame_sink=rec)
     plain = render_frames(rec, width=160, height=120, overlay=False)
     text = render_frames(rec, width=160, height=120, overlay=True)
     assert (plain[:, :8] != text[:, :8]).any()  # the overlay band is drawn at the top
-    from gripper.video import write_video
+    from gripper.render.video import write_video
     write_video(plain, tmp_path / "t.gif", fps=5)
     assert len(mediapy.read_video(str(tmp_path / "t.gif"))) == len(plain)
 
 
 def test_bending_montage(tmp_path):
-    from gripper.bending import BendingConfig
-    from gripper.figures import bending_figure
+    from gripper.experiments.bending import BendingConfig
+    from gripper.render.figures import bending_figure
     out = tmp_path / "bend.png"
     bending_figure(out, BendingConfig(duration=0.5, n_points=31))
     img = mediapy.read_image(str(out))
@@ -77,7 +77,7 @@ def test_bending_montage(tmp_path):
 
 
 def test_success_plot(tmp_path):
-    from gripper.figures import success_plot
+    from gripper.render.figures import success_plot
     summary = {"objects": {"block": {"success_rate": 0.9, "ci95": [0.6, 0.98], "trials": 10},
                            "balloon": {"success_rate": 1.0, "ci95": [0.72, 0.9999999999999999], "trials": 10}}}
     success_plot(summary, tmp_path / "s.png")
@@ -86,7 +86,7 @@ def test_success_plot(tmp_path):
 
 def _cli(*args):
     env = {**os.environ, "MUJOCO_GL": os.environ.get("MUJOCO_GL", "egl")}
-    return subprocess.run([sys.executable, "-m", "gripper.cli", "video", *args], capture_output=True, text=True,
+    return subprocess.run([sys.executable, "-m", "gripper.cli.main", "video", *args], capture_output=True, text=True,
                           env=env, timeout=300)
 
 

@@ -19,7 +19,7 @@ applies a file with :func:`apply_calibration`, which refuses a file made for ano
 unless ``force=True``.
 
 Example:
-    >>> from gripper.params import GripperParams
+    >>> from gripper.core.params import GripperParams
     >>> p = GripperParams()
     >>> cal = Calibration(design_hash=design_hash(p), source="measured",
     ...                   stiffness=(0.01,) * 5, damping=(1e-4,) * 5, rest_angle_deg=(0.0,) * 5)
@@ -36,8 +36,8 @@ from pathlib import Path
 
 import mujoco
 
-from gripper.atomic import write_atomic
-from gripper.params import GripperParams
+from gripper.core.atomic import write_atomic
+from gripper.core.params import GripperParams
 
 SCHEMA = "gripper.calibration/1"
 PAPER_STIFFNESS_NM_PER_DEG = 1.9e-3  # paper 000, Table 2
@@ -67,7 +67,7 @@ class Calibration:
     settings: dict = field(default_factory=dict)
 
     def to_json_dict(self) -> dict:
-        from gripper import __version__
+        from gripper.core.provenance import package_version
         return {
             "schema": SCHEMA,
             "design_hash": self.design_hash,
@@ -78,7 +78,7 @@ class Calibration:
             "paper_stiffness_Nm_per_deg": PAPER_STIFFNESS_NM_PER_DEG,
             "metrics": self.metrics,
             "settings": self.settings,
-            "versions": {"gripper": __version__, "mujoco": mujoco.__version__},
+            "versions": {"gripper": package_version(), "mujoco": mujoco.__version__},
         }
 
     def save(self, path: str | Path) -> Path:

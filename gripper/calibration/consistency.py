@@ -27,7 +27,7 @@ from __future__ import annotations
 import math
 
 from gripper.calibration.convergence import mesh_convergence
-from gripper.params import GripperParams
+from gripper.core.params import GripperParams
 
 
 def equivalent_stiffness(params: GripperParams | None = None, on_progress=None) -> dict:

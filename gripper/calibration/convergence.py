@@ -51,7 +51,7 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 
 from gripper.calibration.mesh import MeshResolution, finger_mesh
-from gripper.params import GripperParams
+from gripper.core.params import GripperParams
 
 CHECK_TENSION = 0.01  # N: the small check load (the solve is linear; results are per newton)
 DIRECT_SOLVE_MAX_DOFS = 60000  # reduced flexible multibody systems up to this size: sparse LU
@@ -119,7 +119,7 @@ def linear_compliance(params: GripperParams | None = None, mesh: MeshResolution 
     import skfem
     from skfem.models.elasticity import lame_parameters, linear_elasticity
 
-    from gripper.calibration.reference import _kabsch_angles
+    from gripper.calibration.reference import kabsch_angles
 
     p = (params or GripperParams()).validate()
     g = p.finger
@@ -148,7 +148,7 @@ def linear_compliance(params: GripperParams | None = None, mesh: MeshResolution 
     # microradians, where the best fit reads it exactly (at full scale, 16° of bending read
     # 2.5 % low: the best fit of a linearised rotation theta turns by atan(theta)).
     cur = fm.points + MEASURE_SCALE * u[basis.nodal_dofs].T
-    angles, _ = _kabsch_angles(fm, cur, list(fm.nodes_of_element), list(fm.element_volume_weights))
+    angles, _ = kabsch_angles(fm, cur, list(fm.nodes_of_element), list(fm.element_volume_weights))
     deg = np.degrees(angles - angles[0]) / (MEASURE_SCALE * CHECK_TENSION)
     return {"compliance_deg_per_N": float(deg[-1]), "element_compliance_deg_per_N": deg.tolist(),
             "nodes": fm.n_nodes, "tets": int(len(fm.tets)), "wall_time_s": time.perf_counter() - t0}

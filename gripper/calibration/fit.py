@@ -1,6 +1,6 @@
 """Fit the hinge-and-spring finger to a bending record (reference run or bench data).
 
-The hinge model (one finger of :func:`gripper.model.add_finger`, the same parameters) is driven
+The hinge model (one finger of :func:`gripper.model.builders.add_finger`, the same parameters) is driven
 by the record's cable tension through a tendon force on the same cable path (guide, one via per
 element, knot at the tip), so the fit compares like with like: per-element angles and the tip
 point at equal tension. Free parameters, in log space and bounded: the stiffness of every hinge
@@ -42,8 +42,9 @@ import numpy as np
 from mujoco import minimize
 
 from gripper.calibration.reference import BendingRecord
-from gripper.model import FingerNames, _add_defaults, _add_element_meshes, _set_options, add_finger
-from gripper.params import GripperParams
+from gripper.core.params import GripperParams
+from gripper.model.builders import add_defaults, add_element_meshes, add_finger, set_options
+from gripper.model.names import FingerNames
 
 # Static runs (the finger at rest at each static point's tension) use their own model: the
 # discrete integrator, implicit in the hinge springs, at a 0.05 s step, where each step acts
@@ -141,12 +142,12 @@ def build_hinge_finger(p: GripperParams, timestep: float, *, static: bool = Fals
     the discrete integrator (implicit in the springs) for runs to rest, see ``STATIC_STEP``.
     """
     spec = mujoco.MjSpec()
-    _set_options(spec, p.replace(sim=p.sim.replace(timestep=timestep, gravity=0.0)))
+    set_options(spec, p.replace(sim=p.sim.replace(timestep=timestep, gravity=0.0)))
     spec.option.integrator = (mujoco.mjtIntegrator.mjINT_DISCRETE if static
                               else mujoco.mjtIntegrator.mjINT_IMPLICITFAST)
     spec.modelname = "finger_calibration"
-    defaults = _add_defaults(spec, p)
-    _add_element_meshes(spec, p)
+    defaults = add_defaults(spec, p)
+    add_element_meshes(spec, p)
     names = add_finger(spec, spec.worldbody, p, "f0", [0, 0, 0], [1, 0, 0, 0], defaults)
     ten = spec.add_tendon(name=names.cable, width=0.5 * p.cable.diameter)
     ten.wrap_site(f"{names.prefix}_cable_guide")

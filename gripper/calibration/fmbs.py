@@ -58,7 +58,12 @@ import mujoco
 import numpy as np
 
 from gripper.calibration.reference import BendingRecord, ReferenceConfig, ReferenceFinger, run_bending_record
-from gripper.params import DEG, PAPER_HINGE_STIFFNESS, PAPER_HINGE_STIFFNESS_PER_RAD_READING, GripperParams
+from gripper.core.params import (
+    DEG,
+    PAPER_HINGE_STIFFNESS,
+    PAPER_HINGE_STIFFNESS_PER_RAD_READING,
+    GripperParams,
+)
 
 READINGS = ("per_degree", "per_radian")
 PAPER_HINGE_DAMPING = 10.0  # paper 000 Table 2, "N·m·s/deg" as printed (implausible, see above)
@@ -128,7 +133,7 @@ ZONE_FRACTION = 0.5 * (1.0 - math.cos(math.pi / 4.0))  # = 0.146, see rigid_zone
 def _element_u(p: GripperParams, mesh, e: int) -> tuple[np.ndarray, np.ndarray]:
     """Nodes of element ``e`` and their position along it, 0 at its proximal and 1 at its
     distal face, measured along the mesh's lines (which lean with the cut faces)."""
-    from gripper.geometry import element_kind
+    from gripper.model.geometry import element_kind
 
     g = p.finger
     nodes = mesh.nodes_of_element[e]

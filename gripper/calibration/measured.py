@@ -19,7 +19,7 @@ required: shortening alone fixes the kinematics, not the stiffness (any stiffnes
 the same angles at equal shortening), so the fit needs the load.
 
 Example:
-    >>> rec = read_measured_csv("models/calibration/example_bench.csv", 6)   # doctest: +SKIP
+    >>> rec = read_measured_csv("gripper/data/calibration/example_bench.csv", 6)   # doctest: +SKIP
 """
 
 from __future__ import annotations
@@ -43,7 +43,7 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
 
     ``closure_angle_deg``: the design's closure angle [deg]; given, a row whose element angles
     put a hinge more than ``CLOSED_CUT_MARGIN_DEG`` past it is refused. The fit finds the hinge
-    springs of the open cuts; past closure the squeezed teeth carry the load (gripper.closure),
+    springs of the open cuts; past closure the squeezed teeth carry the load (gripper.model.closure),
     and fitting springs to such rows would make them too stiff.
 
     Raises:

@@ -38,7 +38,7 @@ Choices (written down because no paper gives them):
   reached 0.67. So ``centre24`` is the default; ``kuhn6`` stays for quick looks.
 
 Example:
-    >>> from gripper.params import FingerGeometry
+    >>> from gripper.core.params import FingerGeometry
     >>> mesh = finger_mesh(FingerGeometry())
     >>> mesh.points.shape[1], mesh.tets.shape[1]
     (3, 4)
@@ -52,8 +52,8 @@ from functools import cached_property
 
 import numpy as np
 
-from gripper.geometry import element_kind
-from gripper.params import FingerGeometry
+from gripper.core.params import FingerGeometry
+from gripper.model.geometry import element_kind
 
 
 @dataclass(frozen=True)

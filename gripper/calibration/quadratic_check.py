@@ -37,7 +37,7 @@ import numpy as np
 
 from gripper.calibration.convergence import CHECK_TENSION, MEASURE_SCALE, solve_clamped
 from gripper.calibration.mesh import channel_side
-from gripper.params import GripperParams
+from gripper.core.params import GripperParams
 
 KNOT_BAND = 1.0e-3  # m: width of the traction band around the channel opening on the tip face
 

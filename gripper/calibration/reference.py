@@ -1,10 +1,10 @@
 """Flexible-multibody reference: the silicone finger as a MuJoCo 3D flex, bent by its cable.
 
 The body (cuts, bridges, cable channel) is meshed by :func:`gripper.calibration.mesh.finger_mesh`
-from the same :class:`~gripper.params.FingerGeometry` as the hinge model, and simulated as a
+from the same :class:`~gripper.core.params.FingerGeometry` as the hinge model, and simulated as a
 ``flexcomp`` of linear tetrahedra (24 per mesh cell, see the mesh module on locking) with
 Saint Venant-Kirchhoff elasticity (Young's modulus,
-Poisson's ratio and density from :class:`~gripper.params.Material`: paper 000 Tables 1-2). The
+Poisson's ratio and density from :class:`~gripper.core.params.Material`: paper 000 Tables 1-2). The
 base element B1 is clamped over the half of its length that sits in the palm mount.
 
 **Symmetry.** By default only the half y >= 0 of the body is meshed (the finger, the cable on
@@ -67,9 +67,9 @@ import mujoco
 import numpy as np
 
 from gripper.calibration.mesh import FingerMesh, MeshResolution, finger_mesh
-from gripper.model import GUIDE_DEPTH
-from gripper.params import GripperParams
-from gripper.stability import SimulationUnstable, check_stable
+from gripper.core.params import GripperParams
+from gripper.model.builders import GUIDE_DEPTH
+from gripper.sim.stability import SimulationUnstable, check_stable
 
 PAPER_STEP = 5.0e-4  # s, paper 000 §IV
 PAPER_DURATION = 2.0  # s, paper 000 §IV
@@ -242,7 +242,7 @@ def _flexcomp_xml(p: GripperParams, mesh: FingerMesh, pinned: np.ndarray,
 </mujoco>"""
 
 
-def _kabsch_angles(mesh: FingerMesh, cur: np.ndarray, groups: list[np.ndarray],
+def kabsch_angles(mesh: FingerMesh, cur: np.ndarray, groups: list[np.ndarray],
                    weights: list[np.ndarray] | None = None
                    ) -> tuple[np.ndarray, list[tuple[np.ndarray, np.ndarray, np.ndarray]]]:
     """Best-fit rotation of each node group of the whole body (mirror images included), the
@@ -392,7 +392,7 @@ class ReferenceFinger:
 
     def measure(self, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Element angles [rad] (B1..Bn) and the tip point's x, z [m]."""
-        angles, fits = _kabsch_angles(self.mesh, pos, list(self.mesh.nodes_of_element),
+        angles, fits = kabsch_angles(self.mesh, pos, list(self.mesh.nodes_of_element),
                                       list(self.mesh.element_volume_weights))
         rot, ca, cb = fits[-1]
         tip = rot @ (self.tip_point - ca) + cb
@@ -497,7 +497,7 @@ def beam_end_moment_check(params: GripperParams | None = None,
       circular arc of radius ``EI/M``.
 
     Args:
-        material: optional :class:`~gripper.params.Material` to use instead of the params'
+        material: optional :class:`~gripper.core.params.Material` to use instead of the params'
             (e.g. another Poisson's ratio, to separate volumetric from shear locking).
 
     Returns:

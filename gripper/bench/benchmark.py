@@ -1,0 +1,197 @@
+"""Headless grasp benchmark: many seeded trials per object, on Dask ``distributed``.
+
+Output folder layout:
+
+- ``config.json``: the run's configuration (parameters, protocol, noise, seed, objects) and
+  its hash; a rerun with a different configuration into the same folder is refused;
+- ``trials.jsonl``: one JSON line per finished trial, appended in trial order, flushed and
+  fsynced as it goes (a crash loses at most the trial being written; a torn last line is
+  dropped on resume);
+- ``summary.csv`` / ``summary.json``: per object ``trials``, ``errors``, ``successes``,
+  ``success_rate`` (over trials without error), ``ci95`` (Wilson score interval),
+  ``damage_rate``, ``median_peak_force_N``, ``p95_peak_force_N``, ``mean_wall_time_s``; plus
+  ``config_hash``, ``versions`` and ``wall_time_s``.
+
+Trials run on a Dask ``LocalCluster`` (one single-threaded worker process per ``workers``) or
+on an existing cluster (``scheduler``); ``workers=1`` without a scheduler runs in this process.
+Every trial is a pure function of (configuration, object, seed, index), so the records do not
+depend on the number of workers.
+
+Example:
+    >>> from gripper.bench.benchmark import BenchConfig, run_benchmark
+    >>> summary = run_benchmark(BenchConfig(objects=("block",), trials=2), "runs/demo")  # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import os
+import statistics
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from gripper.bench.execution import claim_run_dir, read_jsonl, run_ordered
+from gripper.core.hashing import config_hash
+from gripper.core.params import GripperParams
+from gripper.core.provenance import versions
+from gripper.experiments.protocol import GraspProtocol, TrialNoise
+from gripper.experiments.trial import run_trial
+from gripper.objects.library import DEFAULT_OBJECTS, get_object
+
+
+def wilson_interval(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:
+    """Wilson score interval for a binomial proportion (95 % for the default z)."""
+    if n == 0:
+        return (0.0, 1.0)
+    phat = successes / n
+    den = 1 + z * z / n
+    centre = (phat + z * z / (2 * n)) / den
+    half = z * math.sqrt(phat * (1 - phat) / n + z * z / (4 * n * n)) / den
+    return (max(0.0, centre - half), min(1.0, centre + half))
+
+
+@dataclass(frozen=True)
+class BenchConfig:
+    """What to run. ``trials`` per object; ``seed`` the base seed of every trial."""
+
+    objects: tuple[str, ...] = DEFAULT_OBJECTS
+    trials: int = 10
+    seed: int = 0
+    params: GripperParams = field(default_factory=GripperParams)
+    protocol: GraspProtocol = field(default_factory=GraspProtocol)
+    noise: TrialNoise = field(default_factory=TrialNoise)
+
+    def validate(self) -> BenchConfig:
+        if not isinstance(self.trials, int) or self.trials < 1:
+            raise ValueError(f"trials: must be an integer >= 1, got {self.trials!r}")
+        if not self.objects:
+            raise ValueError("objects: give at least one object")
+        for name in self.objects:
+            get_object(name)
+        self.params.validate()
+        self.protocol.validate()
+        self.noise.validate()
+        return self
+
+    def identity(self) -> dict:
+        """Everything that decides a trial's outcome (not the trial count or object list),
+        including the gripper and MuJoCo versions: a new version models objects differently,
+        so its records must not be mixed into an old run's folder."""
+        return {"params": self.params.to_dict(), "protocol": self.protocol.to_dict(),
+                "noise": self.noise.to_dict(), "seed": self.seed,
+                "objects": {o: get_object(o).to_dict() for o in self.objects},
+                "versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")}}
+
+    def hash(self) -> str:
+        return config_hash(self.identity())
+
+    def jobs(self) -> list[tuple[str, int]]:
+        """(object, index) in the order records are written."""
+        return [(o, i) for o in self.objects for i in range(self.trials)]
+
+
+def _run_one(cfg: BenchConfig, obj: str, index: int) -> dict:
+    rec = run_trial(obj, cfg.seed, index, params=cfg.params, protocol=cfg.protocol, noise=cfg.noise)
+    rec["run_config_hash"] = cfg.hash()
+    return rec
+
+
+def _trial_key(rec: dict) -> tuple[str, int]:
+    return rec["object"], int(rec["index"])
+
+
+def read_trials(path: Path) -> list[dict]:
+    """Complete records of ``trials.jsonl`` (a torn last line is cut off)."""
+    return read_jsonl(path)
+
+
+def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = 1, scheduler: str | None = None,
+                  progress: bool = True) -> dict:
+    """Run (or resume) the benchmark into ``out``; return the summary dict.
+
+    Raises:
+        ValueError: bad configuration, or ``out`` holds a different configuration.
+    """
+    cfg.validate()
+    if not isinstance(workers, int) or workers < 1:
+        raise ValueError(f"workers: must be an integer >= 1, got {workers!r}")
+    out = Path(out)
+    claim_run_dir(out, "config.json", "config", cfg.hash(), cfg.identity(), "a run with another configuration")
+    tpath = out / "trials.jsonl"
+    done = {_trial_key(r): r for r in read_trials(tpath)}
+    todo = [j for j in cfg.jobs() if j not in done]
+    t0 = time.perf_counter()
+    run_ordered([(cfg, obj, i) for obj, i in todo], _run_one, tpath, workers=workers, scheduler=scheduler,
+                on_record=lambda rec: done.__setitem__(_trial_key(rec), rec),
+                progress=(len(cfg.jobs()), len(cfg.jobs()) - len(todo), "grasp trials") if progress else None)
+    records = [done[j] for j in cfg.jobs()]
+    summary = summarize(records, cfg, wall_time_s=time.perf_counter() - t0)
+    write_summary(out, summary)
+    return summary
+
+
+def summarize(records: list[dict], cfg: BenchConfig, wall_time_s: float = 0.0) -> dict:
+    """Per-object statistics of ``records`` (see the module docstring)."""
+    per = {}
+    for obj in cfg.objects:
+        rs = [r for r in records if r["object"] == obj]
+        ok = [r for r in rs if r["status"] == "ok"]
+        n = len(ok)
+        s = sum(1 for r in ok if r["success"])
+        forces = [r["peak_total_force_N"] for r in ok]
+        lo, hi = wilson_interval(s, n)
+        per[obj] = {
+            "trials": len(rs), "errors": len(rs) - n, "successes": s,
+            "success_rate": s / n if n else None, "ci95": [lo, hi],
+            "damage_rate": sum(1 for r in ok if r["damaged"]) / n if n else None,
+            "median_peak_force_N": statistics.median(forces) if forces else None,
+            "p95_peak_force_N": float(np.percentile(forces, 95)) if forces else None,
+            "mean_wall_time_s": statistics.fmean(r["wall_time_s"] for r in rs) if rs else None,
+            "warnings": sum(r["warnings"] for r in rs),
+            "failed_phases": {ph: sum(1 for r in ok if r["failed_phase"] == ph)
+                              for ph in ("lift", "hold", "shake", "damage")},
+        }
+    return {"objects": per, "config_hash": cfg.hash(), "versions": versions(),
+            "wall_time_s": wall_time_s, "trials_per_object": cfg.trials, "seed": cfg.seed}
+
+
+SUMMARY_COLUMNS = ("object", "trials", "errors", "successes", "success_rate", "ci95_low", "ci95_high",
+                   "damage_rate", "median_peak_force_N", "p95_peak_force_N", "mean_wall_time_s", "warnings")
+
+
+def write_summary(out: Path, summary: dict) -> None:
+    """Write ``summary.json`` and ``summary.csv`` atomically (temp file, then rename)."""
+    tmp = out / "summary.json.tmp"
+    tmp.write_text(json.dumps(summary, indent=2, sort_keys=True))
+    os.replace(tmp, out / "summary.json")
+    tmp = out / "summary.csv.tmp"
+    with open(tmp, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(SUMMARY_COLUMNS)
+        for obj, s in summary["objects"].items():
+            w.writerow([obj, s["trials"], s["errors"], s["successes"], s["success_rate"], s["ci95"][0],
+                        s["ci95"][1], s["damage_rate"], s["median_peak_force_N"], s["p95_peak_force_N"],
+                        s["mean_wall_time_s"], s["warnings"]])
+    os.replace(tmp, out / "summary.csv")
+
+
+def format_table(summary: dict) -> str:
+    """The summary as a fixed-width text table."""
+    def f(v, spec):
+        return format(v, spec) if v is not None else "-"
+    lines = [f"{'object':<10} {'trials':>6} {'err':>4} {'succ':>5} {'rate':>6} {'95% CI':>13} "
+             f"{'damage':>7} {'F med N':>8} {'F p95 N':>8} {'wall s':>7}"]
+    for obj, s in summary["objects"].items():
+        ci = f"{s['ci95'][0]:.2f}-{s['ci95'][1]:.2f}"
+        lines.append(f"{obj:<10} {s['trials']:>6} {s['errors']:>4} {s['successes']:>5} "
+                     f"{f(s['success_rate'], '6.2f')} {ci:>13} {f(s['damage_rate'], '7.2f')} "
+                     f"{f(s['median_peak_force_N'], '8.2f')} {f(s['p95_peak_force_N'], '8.2f')} "
+                     f"{f(s['mean_wall_time_s'], '7.2f')}")
+    lines.append(f"config {summary['config_hash']}  wall {summary['wall_time_s']:.1f} s  "
+                 f"mujoco {summary['versions']['mujoco']}")
+    return "\n".join(lines)

@@ -1,0 +1,118 @@
+"""The execution layer shared by the benchmark and the design studies.
+
+Jobs run on Dask ``distributed``: a ``LocalCluster`` of single-threaded worker processes on this
+machine, or an existing cluster given by its scheduler address; one local worker runs in this
+process. Results are appended to a JSON-lines file in job order (flushed and fsynced one by one),
+so an interrupted run leaves a clean prefix that :func:`read_jsonl` reads back on resume.
+
+Example:
+    >>> from gripper.bench.execution import run_ordered                              # doctest: +SKIP
+    >>> run_ordered([(1,), (2,)], pow_fn, path, workers=2)                       # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+
+def read_jsonl(path: Path) -> list[dict]:
+    """Complete records of a JSON-lines file; a torn last line (a killed writer) is cut off."""
+    if not path.exists():
+        return []
+    raw = path.read_bytes()
+    keep = raw[: raw.rfind(b"\n") + 1]
+    if len(keep) != len(raw):
+        with open(path, "r+b") as f:
+            f.truncate(len(keep))
+    return [json.loads(line) for line in keep.decode().splitlines() if line.strip()]
+
+
+def claim_run_dir(out: Path, filename: str, key: str, h: str, payload: dict, what: str) -> None:
+    """Create ``out`` and record the run's identity in ``out/filename`` ({key}_hash, {key},
+    versions); an existing record with another hash is refused (ValueError naming ``--out``)."""
+    from gripper.core.provenance import versions
+
+    out.mkdir(parents=True, exist_ok=True)
+    cfile = out / filename
+    if cfile.exists():
+        try:
+            old = json.loads(cfile.read_text())
+        except json.JSONDecodeError:
+            raise ValueError(f"--out: {cfile} is not valid JSON; use a new folder") from None
+        if old.get(f"{key}_hash") != h:
+            raise ValueError(f"--out: {out} holds {what} (hash {old.get(f'{key}_hash')} vs {h}); choose a new "
+                             "--out folder, or delete that folder to start over")
+        return
+    tmp = cfile.with_suffix(".tmp")
+    tmp.write_text(json.dumps({f"{key}_hash": h, key: payload, "versions": versions()},
+                              indent=2, sort_keys=True, default=str))
+    os.replace(tmp, cfile)
+
+
+def executor(workers: int, scheduler: str | None):
+    """(client, close, distributed): a Dask client, or an in-process stand-in for one worker."""
+    if scheduler is None and workers == 1:
+        class _Inline:
+            def submit(self, fn, *a, **_):
+                return fn(*a)
+        return _Inline(), (lambda: None), False
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler:
+        client = Client(scheduler)
+        return client, client.close, True
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0")
+    client = Client(cluster)
+
+    def close():
+        client.close()
+        cluster.close()
+    return client, close, True
+
+
+def run_ordered(todo: Sequence[tuple], fn: Callable[..., dict], path: Path, *, workers: int = 1,
+                scheduler: str | None = None, on_record: Callable[[dict], None] | None = None,
+                progress: tuple[int, int, str] | None = None) -> None:
+    """Run ``fn(*job)`` for every job of ``todo`` and append each record to ``path`` in job order.
+
+    ``progress`` = (total, already done, label) shows a tqdm bar. ``fn`` must be importable by
+    the workers (a module-level function).
+    """
+    bar = None
+    if progress is not None and todo:
+        from tqdm import tqdm
+        total, initial, label = progress
+        bar = tqdm(total=total, initial=initial, unit="job", desc=label)
+    if not todo:
+        return
+    client, close, distributed = executor(workers, scheduler)
+    try:
+        with open(path, "a", encoding="utf-8") as f:
+            def write(rec):
+                f.write(json.dumps(rec, sort_keys=True) + "\n")
+                f.flush()
+                os.fsync(f.fileno())
+                if on_record is not None:
+                    on_record(rec)
+                if bar is not None:
+                    bar.update(1)
+            if not distributed:
+                for job in todo:
+                    write(client.submit(fn, *job))
+                return
+            from dask.distributed import as_completed
+            futures = {client.submit(fn, *job, pure=False): k for k, job in enumerate(todo)}
+            pending: dict[int, dict] = {}
+            nxt = 0
+            for fut in as_completed(futures):
+                pending[futures[fut]] = fut.result()
+                while nxt in pending:  # write in job order
+                    write(pending.pop(nxt))
+                    nxt += 1
+    finally:
+        close()
+        if bar is not None:
+            bar.close()

@@ -1,0 +1,482 @@
+"""What the single and the vector Gymnasium environments share: scenes, actions, observation,
+reward, success and episode end, all computed from one simulation's state and sensor data.
+
+Both environments step with ``mujoco.rollout`` (one control period = ``frame_skip`` physics
+steps) from a full-physics state with a zero solver warm start, and build every quantity from
+the rollout's final state and last sensor row, so a single environment and one slot of the vector
+environment produce bitwise the same episode for the same seed.
+
+Example:
+    >>> from gripper.envs.core import EnvConfig
+    >>> EnvConfig(objects=("block",), action_mode="synergy").validate().action_size
+    2
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from gripper.core.params import GripperParams
+from gripper.experiments.protocol import TrialNoise
+from gripper.experiments.trial import sample_placement
+from gripper.model.names import finger_name
+from gripper.objects.library import GraspObject, Placement, get_object
+from gripper.sim.probes import STRAIN_DAMAGE_KINDS, ObjectProbe
+from gripper.sim.scene import build_grasp_scene
+from gripper.sim.stepping import STATE_SPEC
+
+CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
+
+# Physics step of the environments [s]: the grasp trials' 2 ms (see GraspProtocol.timestep).
+ENV_TIMESTEP = 0.002
+# Palm-face height at the start of an episode, above the object's top plus the finger length [m]:
+# 10 mm keeps the straight fingertips clear of the object's top at any sampled offset.
+START_CLEARANCE = 0.010
+# Lowest palm set-point: fingertips 4 mm above the floor [m] (they must not dig into it).
+TIP_FLOOR_CLEARANCE = 0.004
+# Horizontal set-point range of the x/y actions [m]: ±20 mm covers the ±10 mm pose noise twice.
+XY_ACTION_RANGE = 0.020
+# Workspace: the object has left it beyond this horizontal distance from the palm axis's home
+# [m] (a gripper of 57 mm radius cannot reach it) or below the floor by 20 mm (fell through).
+WORKSPACE_RADIUS = 0.15
+WORKSPACE_FLOOR = -0.020
+IDENTITY_QUAT = np.array([1.0, 0.0, 0.0, 0.0])  # orientation reported for a flex object
+
+DEFAULT_REWARD_WEIGHTS = {
+    "reach": 1.0,     # per metre of distance between the grasp point and the object
+    "contact": 0.25,  # fraction of fingers whose pads press on something
+    "lift": 2.0,      # object rise above its start / success height, clipped to [0, 1]
+    "success": 5.0,   # per control step at which the grasp counts as held
+    "damage": 10.0,   # once, when the object is damaged
+    "action": 0.01,   # per unit squared action norm
+}
+
+
+@dataclass(frozen=True)
+class EnvConfig:
+    """Everything that defines the environment, validated once (SI units).
+
+    See :class:`gripper.envs.grasp_env.SoftGripperGraspEnv` for the meaning of each field.
+    """
+
+    objects: tuple[str, ...] = ("block", "cylinder")
+    pose_noise: float = 0.010
+    yaw_noise: bool = True
+    mass_noise: float = 0.0
+    friction_noise: float = 0.0
+    action_mode: str = "fingers"
+    xy_actions: bool = False
+    frame_skip: int = 10
+    reward_type: str = "dense"
+    reward_weights: dict = field(default_factory=lambda: dict(DEFAULT_REWARD_WEIGHTS))
+    terminate_on_success: bool = True
+    success_hold_s: float = 1.0
+    success_height: float = 0.08
+    max_slip: float = 0.020
+    params: GripperParams = field(default_factory=GripperParams)
+
+    def validate(self) -> EnvConfig:
+        if isinstance(self.objects, str) or not self.objects:
+            raise ValueError(f"objects: expected a non-empty list of object names, got {self.objects!r}")
+        for name in self.objects:
+            get_object(name)  # raises with the allowed names
+        for name, v, hi in (("pose_noise", self.pose_noise, 0.02), ("mass_noise", self.mass_noise, 0.9),
+                            ("friction_noise", self.friction_noise, 0.9)):
+            if not (isinstance(v, int | float) and math.isfinite(v) and 0 <= v <= hi):
+                raise ValueError(f"{name}: must be in [0, {hi}], got {v!r}")
+        if self.action_mode not in ("fingers", "synergy"):
+            raise ValueError(f"action_mode: must be 'fingers' or 'synergy', got {self.action_mode!r}")
+        if self.reward_type not in ("dense", "sparse"):
+            raise ValueError(f"reward_type: must be 'dense' or 'sparse', got {self.reward_type!r}")
+        if not isinstance(self.frame_skip, int) or not 1 <= self.frame_skip <= 500:
+            raise ValueError(f"frame_skip: must be an integer in [1, 500], got {self.frame_skip!r}")
+        unknown = set(self.reward_weights) - set(DEFAULT_REWARD_WEIGHTS)
+        if unknown:
+            raise ValueError(f"reward_weights: unknown terms {sorted(unknown)}; allowed: "
+                             f"{', '.join(DEFAULT_REWARD_WEIGHTS)}")
+        for k, v in self.reward_weights.items():
+            if not (isinstance(v, int | float) and math.isfinite(v)):
+                raise ValueError(f"reward_weights.{k}: must be a finite number, got {v!r}")
+        for name in ("success_hold_s", "success_height", "max_slip"):
+            v = getattr(self, name)
+            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+                raise ValueError(f"{name}: must be a finite number > 0, got {v!r}")
+        if self.xy_actions and not self.params.lift.xy_enabled:
+            raise ValueError("xy_actions: needs params.lift.xy_enabled = true")
+        self.params.validate()
+        return self
+
+    @property
+    def n_fingers(self) -> int:
+        return self.params.layout.n_fingers
+
+    @property
+    def action_size(self) -> int:
+        n = self.n_fingers if self.action_mode == "fingers" else 1
+        return n + 1 + (2 if self.xy_actions else 0)
+
+    @property
+    def control_period(self) -> float:
+        return self.frame_skip * ENV_TIMESTEP
+
+    @functools.cached_property
+    def weights(self) -> dict:
+        """The reward weights in effect (defaults overridden by ``reward_weights``)."""
+        return {**DEFAULT_REWARD_WEIGHTS, **self.reward_weights}
+
+    def replace(self, **changes) -> EnvConfig:
+        return dataclasses.replace(self, **changes).validate()
+
+
+def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
+    """Observation layout: name -> (start index, size, unit)."""
+    nf, nh = cfg.n_fingers, cfg.params.finger.n_segments - 1
+    parts = [("hinge_angle", nf * nh, "rad"), ("hinge_velocity", nf * nh, "rad/s"),
+             ("cable_shortening", nf, "m"), ("cable_tension", nf, "N"), ("servo_angle", nf, "rad"),
+             ("palm_height", 1, "m"), ("object_pos_rel_palm", 3, "m"), ("object_quat", 4, "-"),
+             ("pad_force", nf * cfg.params.finger.n_segments, "N")]
+    out, i = {}, 0
+    for name, size, unit in parts:
+        out[name] = (i, size, unit)
+        i += size
+    return out
+
+
+class Scene:
+    """One compiled scene (gripper + one object) and the indices the environment reads."""
+
+    def __init__(self, cfg: EnvConfig, obj: GraspObject, place: Placement):
+        p = cfg.params.replace(sim=cfg.params.sim.replace(timestep=ENV_TIMESTEP))
+        self.cfg, self.obj, self.params = cfg, obj, p
+        self.model = build_grasp_scene(p, obj, place)
+        m = self.model
+        self.probe = ObjectProbe(m, obj, cfg.n_fingers)
+        nf = cfg.n_fingers
+        hinges = [f"{finger_name(k)}_hinge{j}" for k in range(nf) for j in range(2, p.finger.n_segments + 1)]
+        self.hinge_q = np.array([m.jnt_qposadr[m.joint(h).id] for h in hinges])
+        self.hinge_v = np.array([m.jnt_dofadr[m.joint(h).id] for h in hinges])
+        reels = [m.joint(f"{finger_name(k)}_reel").id for k in range(nf)]
+        self.reel_q = np.array([m.jnt_qposadr[j] for j in reels])
+        self.lift_q = {a: m.jnt_qposadr[m.joint(a).id] for a in ("lift_x", "lift_y", "lift_z")
+                       if mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, a) >= 0}
+        sadr = lambda name: m.sensor_adr[m.sensor(name).id]  # noqa: E731
+        self.tension = np.array([sadr(f"{finger_name(k)}_cable_tension") for k in range(nf)])
+        self.pads = np.array([sadr(f"{finger_name(k)}_seg{j}_pad") for k in range(nf)
+                              for j in range(1, p.finger.n_segments + 1)])
+        self.servo = self.probe.servo
+        self.spool = p.servo.spool_radius
+        self.act_lift = {a: m.actuator(a).id for a in self.lift_q}
+        self.lift_act_ids = np.array(list(self.act_lift.values()))
+        self.home = p.lift.home_height
+        self.z_min = p.finger.length + TIP_FLOOR_CLEARANCE - self.home
+        self.z_start = obj.height + p.finger.length + START_CLEARANCE - self.home
+        self.z_max = 0.0  # the lift's home: palm face at params.lift.home_height
+        self.servo_max = float(m.actuator_ctrlrange[self.servo[0], 1])
+        self.free_q = (m.jnt_qposadr[m.joint("object_free").id]
+                       if mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, "object_free") >= 0 else -1)
+        self.nominal_mass = m.body_mass.copy()
+        self.nominal_inertia = m.body_inertia.copy()
+        self.nominal_friction = m.geom_friction.copy()
+        self.nstate = mujoco.mj_stateSize(m, STATE_SPEC)
+        self._signature: tuple | None = None
+        self._build_control_map()
+        # observation gather: palm x/y joints (or none), object body (or the flex centroid)
+        self.palm_xy_q = np.array([self.lift_q[a] for a in ("lift_x", "lift_y") if a in self.lift_q], dtype=int)
+        self.palm_xy_slot = np.array([i for i, a in enumerate(("lift_x", "lift_y")) if a in self.lift_q], dtype=int)
+
+    def signature(self) -> tuple:
+        """Sizes that decide whether scenes can share one rollout call (cached: read every step)."""
+        if self._signature is None:
+            m = self.model
+            self._signature = (m.nq, m.nv, m.na, m.nu, m.nsensordata, self.nstate)
+        return self._signature
+
+    def lift_action(self, palm_height: float) -> float:
+        """The lift action that sets the palm face ``palm_height`` above the floor [m]."""
+        z = palm_height - self.home
+        return float(np.clip(2.0 * (z - self.z_min) / (self.z_max - self.z_min) - 1.0, -1.0, 1.0))
+
+    def xy_action(self, offset: float) -> float:
+        """The x or y action that sets the palm ``offset`` from its home axis [m]."""
+        return float(np.clip(offset / XY_ACTION_RANGE, -1.0, 1.0))
+
+    def servo_action(self, angle: float) -> float:
+        """The servo action that sets the spool angle ``angle`` [rad]."""
+        return float(np.clip(2.0 * angle / self.servo_max - 1.0, -1.0, 1.0))
+
+    def controls(self, action: np.ndarray) -> np.ndarray:
+        """Map an action in [-1, 1] to the actuator controls (nu,): each actuator's control is
+        ``offset + scale * action[source]`` (servos: [0, full travel]; lift z: [z_min, z_max];
+        x/y: ±XY_ACTION_RANGE; actuators without an action stay at 0)."""
+        return self._ctrl_offset + self._ctrl_scale * np.clip(action, -1.0, 1.0)[self._ctrl_source]
+
+    def _build_control_map(self) -> None:
+        nu = self.model.nu
+        self._ctrl_source = np.zeros(nu, dtype=int)
+        self._ctrl_offset = np.zeros(nu)
+        self._ctrl_scale = np.zeros(nu)
+        fingers = self.cfg.action_mode == "fingers"
+        k = self.cfg.n_fingers if fingers else 1
+        self._ctrl_source[self.servo] = np.arange(k) if fingers else 0  # synergy: one command
+        self._ctrl_offset[self.servo] = self._ctrl_scale[self.servo] = 0.5 * self.servo_max
+        z = self.act_lift["lift_z"]
+        self._ctrl_source[z] = k
+        self._ctrl_offset[z] = 0.5 * (self.z_min + self.z_max)
+        self._ctrl_scale[z] = 0.5 * (self.z_max - self.z_min)
+        if self.cfg.xy_actions:
+            for j, name in enumerate(("lift_x", "lift_y")):
+                self._ctrl_source[self.act_lift[name]] = k + 1 + j
+                self._ctrl_scale[self.act_lift[name]] = XY_ACTION_RANGE
+
+
+class SceneSet:
+    """The scenes of an environment: rigid objects compiled once and placed through their free
+    joint; deformable ones (flexes) compiled anew at every reset with the sampled placement."""
+
+    def __init__(self, cfg: EnvConfig):
+        self.cfg = cfg
+        self.objects = [get_object(n) for n in cfg.objects]
+        self._rigid = {o.name: Scene(cfg, o, Placement()) for o in self.objects if not o.is_flex}
+
+    @staticmethod
+    def apply_placement(scene: Scene, place: Placement) -> None:
+        """Set a rigid scene's object mass, inertia and friction from the nominal values."""
+        m, b = scene.model, scene.probe.body
+        m.body_mass[:] = scene.nominal_mass
+        m.body_inertia[:] = scene.nominal_inertia
+        m.geom_friction[:] = scene.nominal_friction
+        m.body_mass[b] *= place.mass_scale
+        m.body_inertia[b] *= place.mass_scale
+        m.geom_friction[scene.probe.object_geom[:-1], 0] *= place.friction_scale
+
+    def new_episode(self, rng: np.random.Generator) -> tuple[Scene, mujoco.MjData, Placement]:
+        obj = self.objects[int(rng.integers(len(self.objects)))]
+        noise = TrialNoise(xy=self.cfg.pose_noise, yaw=self.cfg.yaw_noise, mass_frac=self.cfg.mass_noise,
+                           friction_frac=self.cfg.friction_noise)
+        seed = int(rng.integers(2**63 - 1))
+        place = sample_placement(obj, noise, seed, 0)
+        if obj.is_flex:
+            scene = Scene(self.cfg, obj, place)
+        else:
+            scene = self._rigid[obj.name]
+            self.apply_placement(scene, place)
+        d = mujoco.MjData(scene.model)
+        if not obj.is_flex:
+            a = scene.free_q
+            d.qpos[a:a + 2] = [place.x, place.y]
+            d.qpos[a + 3:a + 7] = [math.cos(0.5 * place.yaw), 0.0, 0.0, math.sin(0.5 * place.yaw)]
+        d.qpos[scene.lift_q["lift_z"]] = scene.z_start
+        d.ctrl[scene.act_lift["lift_z"]] = scene.z_start
+        mujoco.mj_forward(scene.model, d)
+        return scene, d, place
+
+
+@dataclass
+class EpisodeState:
+    """Per-episode bookkeeping of one simulation."""
+
+    scene: Scene
+    data: mujoco.MjData
+    placement: Placement
+    start_pos: np.ndarray
+    hold_ref: np.ndarray | None = None
+    hold_steps: int = 0
+    peak_strain: float = 0.0
+    damaged: bool = False
+    last_obs: np.ndarray | None = None
+    steps: int = 0
+
+
+def start_episode(scenes: SceneSet, rng: np.random.Generator) -> EpisodeState:
+    scene, d, place = scenes.new_episode(rng)
+    return EpisodeState(scene=scene, data=d, placement=place, start_pos=scene.probe.object_pos(d))
+
+
+def state_vector(ep: EpisodeState) -> np.ndarray:
+    out = np.empty(ep.scene.nstate)
+    mujoco.mj_getState(ep.scene.model, ep.data, out, STATE_SPEC)
+    return out
+
+
+def load_state(ep: EpisodeState, state: np.ndarray, ctrl: np.ndarray) -> None:
+    """Put the rollout's final state into the episode's data and refresh positions."""
+    m, d = ep.scene.model, ep.data
+    mujoco.mj_setState(m, d, state, STATE_SPEC)
+    d.ctrl[:] = ctrl
+    mujoco.mj_kinematics(m, d)
+    if m.nflex:
+        mujoco.mj_flex(m, d)
+
+
+def observe(ep: EpisodeState, sens: np.ndarray) -> np.ndarray:
+    """The observation (float64) from the data's current state and the last sensor row."""
+    s, d = ep.scene, ep.data
+    q = d.qpos
+    palm = np.zeros(3)
+    palm[s.palm_xy_slot] = q[s.palm_xy_q]
+    palm[2] = s.home + q[s.lift_q["lift_z"]]
+    pos = s.probe.object_pos(d) - palm
+    quat = d.xquat[s.probe.body] if s.probe.body >= 0 else IDENTITY_QUAT
+    reel = q[s.reel_q]
+    return np.concatenate([
+        q[s.hinge_q], d.qvel[s.hinge_v], reel, sens[s.tension], reel / s.spool, palm[2:3], pos, quat,
+        sens[s.pads]])
+
+
+def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.ndarray, cfg: EnvConfig,
+             struct: dict) -> tuple[float, bool, dict]:
+    """Reward, termination and info of the control step that ended in ``ep``'s current state."""
+    s, d = ep.scene, ep.data
+    obj_pos = s.probe.object_pos(d)
+    height = float(obj_pos[2] - ep.start_pos[2])
+    rel = obs[struct["object_pos_rel_palm"][0]:struct["object_pos_rel_palm"][0] + 3]
+    # scalar math on 3-vectors: numpy's per-call cost dominates at this size
+    reach = math.dist(rel, (0.0, 0.0, -0.5 * s.params.finger.length))  # to the grasp point
+    pads = sens[s.pads].reshape(cfg.n_fingers, -1).sum(axis=1)
+    touching = float(np.count_nonzero(pads > 0.05)) / cfg.n_fingers  # 0.05 N: above sensor noise
+    # damage: the object's own criterion where it can be read at every step
+    if s.obj.kind in STRAIN_DAMAGE_KINDS:
+        ep.peak_strain = max(ep.peak_strain, s.probe.edge_strain(d))
+        measure = ep.peak_strain
+    elif s.obj.kind == "paper_box":
+        # a permanent dent needs a spring-back simulation (see trial.permanent_dent); per step the
+        # environment counts any plastic bending of the card (a crease) as damage: stricter
+        a = s.model.flex_plasticadr[s.probe.flex]
+        measure = float(np.abs(d.plastic[a:]).max()) if d.plastic.size else 0.0
+        measure = s.obj.damage_limit * 2.0 if measure > 0.0 else 0.0
+    else:
+        measure = float(pads.sum())
+    newly_damaged = (not ep.damaged) and measure > s.obj.damage_limit
+    ep.damaged = ep.damaged or newly_damaged
+    # held: lifted past the success height and not slipping relative to the palm
+    if height >= cfg.success_height and not ep.damaged:
+        if ep.hold_ref is None or math.dist(rel, ep.hold_ref) >= cfg.max_slip:
+            ep.hold_ref, ep.hold_steps = rel.copy(), 0
+        ep.hold_steps += 1
+    else:
+        ep.hold_ref, ep.hold_steps = None, 0
+    held_s = ep.hold_steps * cfg.control_period
+    is_success = held_s >= cfg.success_hold_s - 1e-9
+    w = cfg.weights
+    terms = {
+        "reward_reach": -w["reach"] * reach,
+        "reward_contact": w["contact"] * touching,
+        "reward_lift": w["lift"] * min(1.0, max(0.0, height / cfg.success_height)),
+        "reward_success": w["success"] * float(is_success),
+        "reward_damage": -w["damage"] * float(newly_damaged),
+        "reward_action": -w["action"] * float(action @ action),
+    }
+    reward = float(sum(terms.values())) if cfg.reward_type == "dense" else float(is_success)
+    out_of_workspace = bool(math.hypot(obj_pos[0], obj_pos[1]) > WORKSPACE_RADIUS or obj_pos[2] < WORKSPACE_FLOOR)
+    terminated = out_of_workspace or ep.damaged or (cfg.terminate_on_success and is_success)
+    info = {**terms, "is_success": bool(is_success), "object": s.obj.name, "object_height_m": height,
+            "held_s": held_s, "damaged": ep.damaged, "damage_measure": measure,
+            "out_of_workspace": out_of_workspace, "unstable": False}
+    return reward, terminated, info
+
+
+def unstable_result(ep: EpisodeState, err: str) -> tuple[np.ndarray, float, bool, dict]:
+    """A diverged simulation ends the episode: last finite observation, zero reward, the reason."""
+    return (ep.last_obs.copy(), 0.0, True,
+            {"is_success": False, "object": ep.scene.obj.name, "unstable": True, "error": err})
+
+
+class BatchStepper:
+    """Steps several episodes one control period each with one ``mujoco.rollout`` call per group
+    of scenes with the same sizes, on MuJoCo's thread pool (``nthread`` threads; 0: this thread).
+
+    Instability: a non-finite final state, a clock that did not advance by the control period
+    (MuJoCo resets a diverging simulation after its warning), or a MuJoCo warning. Warnings are
+    counted in the rollout's per-thread scratch data, which do not say which episode raised them,
+    so when one appears without a reset clock, the batch's episodes are replayed one by one
+    (deterministic: same state, same zero warm start) to find the culprits.
+    """
+
+    def __init__(self, nthread: int = 0):
+        from mujoco import rollout
+
+        self.nthread = nthread
+        self.roll = rollout.Rollout(nthread=nthread)
+        self._scratch: dict[tuple, list[mujoco.MjData]] = {}
+        self._counters: dict[tuple, list[np.ndarray]] = {}
+
+    def _warning_counters(self, datas: list[mujoco.MjData]) -> list[np.ndarray]:
+        """Views of each scratch data's warning counters (made once: the view costs more than
+        reading it)."""
+        key = tuple(id(d) for d in datas)
+        if key not in self._counters:
+            self._counters[key] = [d.warning.number for d in datas]
+        return self._counters[key]
+
+    def _datas(self, scene: Scene) -> list[mujoco.MjData]:
+        key = scene.signature()
+        if key not in self._scratch:
+            self._scratch[key] = [mujoco.MjData(scene.model) for _ in range(max(1, self.nthread))]
+        return self._scratch[key]
+
+    def _run(self, eps, ctrls, datas):
+        n, k = len(eps), eps[0].scene.cfg.frame_skip
+        s0 = np.stack([state_vector(ep) for ep in eps])
+        new = np.stack(ctrls)
+        u = np.repeat(new[:, None, :], k, axis=1)
+        # palm stages: first-order hold, the set-point ramps from the last one to the new one over
+        # the control period (a stage's trajectory generator); a jump would jerk the stiff stage.
+        # Scenes of one size signature come from one config, so their lift actuators coincide.
+        lift = eps[0].scene.lift_act_ids
+        if any(ep.scene.lift_act_ids is not lift and not np.array_equal(ep.scene.lift_act_ids, lift)
+               for ep in eps):
+            raise ValueError("batch: episodes with different lift actuators cannot share a rollout")
+        ramp = (np.arange(1, k + 1) / k)[None, :, None]
+        prev = np.stack([ep.data.ctrl for ep in eps])[:, lift]
+        u[:, :, lift] = prev[:, None, :] + ramp * (new[:, lift] - prev)[:, None, :]
+        warm = np.zeros((n, eps[0].scene.model.nv))
+        state = np.empty((n, k, s0.shape[1]))
+        sens = np.empty((n, k, eps[0].scene.model.nsensordata))
+        counters = self._warning_counters(datas)
+        for c in counters:
+            c[:] = 0  # read after the rollout
+        self.roll.rollout([ep.scene.model for ep in eps], datas, s0, u, control_spec=CTRL_SPEC,
+                          skip_checks=True, nstep=k, initial_warmstart=warm, state=state,
+                          sensordata=sens, chunk_size=1)
+        warned = any(c.any() for c in counters)
+        # MuJoCo resets a diverging simulation (time back to 0) after its warning: the clock
+        # tells, per episode, even where the per-thread warning counters cannot
+        dt = eps[0].scene.model.opt.timestep
+        reset = np.abs(state[:, -1, 0] - (s0[:, 0] + k * dt)) > 0.5 * dt
+        return state[:, -1], sens[:, -1], warned, reset
+
+    def step(self, eps: list[EpisodeState], ctrls: list[np.ndarray]) -> list[tuple[np.ndarray, str | None]]:
+        """Advance each episode one control period; return (last sensor row, error or None)."""
+        out: list = [None] * len(eps)
+        groups: dict[tuple, list[int]] = {}
+        for i, ep in enumerate(eps):
+            groups.setdefault(ep.scene.signature(), []).append(i)
+        for idx in groups.values():
+            batch = [eps[i] for i in idx]
+            datas = self._datas(batch[0].scene)
+            final, sens, warned, reset = self._run(batch, [ctrls[i] for i in idx], datas)
+            culprits = set(np.flatnonzero(reset).tolist())
+            if warned and not culprits:
+                for j, i in enumerate(idx):
+                    if self._run([eps[i]], [ctrls[i]], datas)[2]:  # the pool needs one data per thread
+                        culprits.add(j)
+            finite = np.isfinite(final).all(axis=1)
+            for j, i in enumerate(idx):
+                err = None
+                if j in culprits:
+                    err = "MuJoCo warning during the step (simulation unstable)"
+                elif not finite[j]:
+                    err = "non-finite state (simulation diverged)"
+                else:
+                    load_state(eps[i], final[j], ctrls[i])
+                out[i] = (sens[j], err)
+        return out
+
+    def close(self) -> None:
+        self.roll.close()

@@ -1,0 +1,381 @@
+"""Gymnasium environment ``SoftGripperGrasp-v1``: grasp and lift one object with the soft gripper.
+
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v1")``.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+
+from gripper.core.params import GripperParams
+from gripper.envs.core import (
+    BatchStepper,
+    EnvConfig,
+    EpisodeState,
+    SceneSet,
+    evaluate,
+    observation_structure,
+    observe,
+    start_episode,
+    unstable_result,
+)
+
+# "human" (MuJoCo's viewer window) is offered only where a display exists
+RENDER_MODES = ["rgb_array", "depth_array"] + (
+    ["human"] if os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY") else [])
+
+
+def make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode, xy_actions,
+                frame_skip, reward_type, reward_weights, terminate_on_success, success_hold_s,
+                params, calibration=None) -> EnvConfig:
+    if isinstance(objects, str):
+        objects = tuple(o.strip() for o in objects.split(",") if o.strip())
+    if params is None:
+        params = GripperParams()
+    elif not isinstance(params, GripperParams):
+        params = GripperParams.load(params)
+    if calibration is not None:
+        from gripper.calibration.calfile import apply_calibration
+        params = apply_calibration(params, calibration)
+    return EnvConfig(
+        objects=tuple(objects), pose_noise=pose_noise, yaw_noise=yaw_noise, mass_noise=mass_noise,
+        friction_noise=friction_noise, action_mode=action_mode, xy_actions=xy_actions,
+        frame_skip=frame_skip, reward_type=reward_type, reward_weights=dict(reward_weights or {}),
+        terminate_on_success=terminate_on_success, success_hold_s=success_hold_s, params=params,
+    ).validate()
+
+
+def env_arguments(**kwargs) -> dict:
+    """Bind keyword arguments to :class:`SoftGripperGraspEnv`'s signature (its defaults, and a
+    clear error for an unknown one); return them with the validated ``config``."""
+    import inspect
+
+    sig = inspect.signature(SoftGripperGraspEnv.__init__)
+    try:
+        bound = sig.bind(None, **kwargs)
+    except TypeError as e:
+        raise ValueError(f"SoftGripperGrasp-v1: {e}") from None
+    bound.apply_defaults()
+    a = dict(bound.arguments)
+    a.pop("self")
+    a["config"] = make_config(**{k: a[k] for k in inspect.signature(make_config).parameters})
+    return a
+
+
+def check_render_args(render_mode, width, height, camera) -> None:
+    if render_mode is not None and render_mode not in RENDER_MODES:
+        raise ValueError(f"render_mode: must be one of {RENDER_MODES} or None, got {render_mode!r}")
+    from gripper.render.renderer import check_view
+    check_view(width, height, camera)
+
+
+def make_spaces(cfg: EnvConfig) -> tuple[dict, spaces.Box, spaces.Box]:
+    """(observation structure, observation space, action space) of one environment."""
+    structure = observation_structure(cfg)
+    n_obs = sum(size for _, size, _ in structure.values())
+    return (structure, spaces.Box(-np.inf, np.inf, (n_obs,), np.float64),
+            spaces.Box(-1.0, 1.0, (cfg.action_size,), np.float32))
+
+
+class SoftGripperGraspEnv(gym.Env):
+    """Grasp one object with the four-finger, cable-driven soft gripper and lift it.
+
+    ## Description
+
+    A palm on a vertical lift axis (optionally x/y) carries four fingers; each finger is a chain
+    of six silicone elements (the first fixed to the palm) joined at five hinges with torsion
+    springs, bent by a cable that a hobby servo (MuJoCo ``dcmotor`` with position input, PD,
+    voltage clamp and slew limit) reels in. One object from ``objects`` stands on the floor
+    under the palm, offset by up to ``pose_noise`` in x and y (and turned at random where its
+    shape is not symmetric). The task: close the fingers on it and lift it at least 8 cm
+    without slipping or damaging it, as in the grasp benchmark (``gripper bench``).
+
+    ## Action space
+
+    ``Box(-1, 1, (n,), float32)``; every entry maps linearly onto its actuator's set-point range:
+
+    | action_mode | index | actuator | -1 | +1 | unit |
+    |---|---|---|---|---|---|
+    | fingers | 0-3 | servo of finger k (cable reeled in) | 0 | servo travel (π) | rad |
+    | fingers | 4 | lift: palm-face height set-point | fingertips 4 mm above floor | home, 0.25 m | m |
+    | synergy | 0 | all four servos together | 0 | servo travel (π) | rad |
+    | synergy | 1 | lift: palm-face height set-point | fingertips 4 mm above floor | home, 0.25 m | m |
+    | either, xy_actions | last 2 | palm x and y set-points | -0.02 | +0.02 | m |
+
+    ``env.unwrapped.lift_action(height)``, ``servo_action(angle)`` and ``xy_action(offset)`` give
+    the action value for a palm height [m], a spool angle [rad] or a palm x/y offset [m].
+    Within a control period the palm set-points ramp linearly from the previous action's value
+    to the new one (first-order hold, as a stage's trajectory generator; a step would jerk the
+    stiff stage), while the servo set-points are held (zero-order hold, as a hobby servo's 50 Hz
+    PWM command).
+    The servos slew their set-point at the contraction speed (the servo's no-load speed), so a
+    jump in the action is followed at the speed the hardware allows.
+
+    ## Observation space
+
+    ``Box(-inf, inf, (84,), float64)`` with the default four fingers of six elements; the layout
+    is ``env.observation_structure`` (name -> (start, size, unit)):
+
+    | part | indices | size | unit |
+    |---|---|---|---|
+    | hinge_angle | 0-19 | 20 | rad |
+    | hinge_velocity | 20-39 | 20 | rad/s |
+    | cable_shortening | 40-43 | 4 | m |
+    | cable_tension | 44-47 | 4 | N |
+    | servo_angle | 48-51 | 4 | rad |
+    | palm_height | 52-52 | 1 | m |
+    | object_pos_rel_palm | 53-55 | 3 | m |
+    | object_quat | 56-59 | 4 | - |
+    | pad_force | 60-83 | 24 | N |
+
+    Hinge angles and velocities are finger-major (finger 0 hinges 2-6, then finger 1, ...).
+    Cable shortening is the cable reeled onto the spool; tension is the cable's limit force;
+    the palm height is the palm face above the floor; the object position is its reference point
+    (body origin, the bag's contents, or a flex's vertex centroid) relative to the palm centre;
+    its orientation is a unit quaternion (identity for balloon and paper box, whose flex has no
+    single frame); pad forces are the touch sensors of each element's pad, finger-major.
+    Forces (tension, pads) are the sensor values of the last physics step of the control period;
+    everything else is the state at its end.
+
+    ## Rewards
+
+    ``reward_type="sparse"``: 1 at every step where the grasp counts as held (``is_success``),
+    else 0. ``"dense"``: the sum of these terms, each returned in ``info`` (weights in
+    ``reward_weights``, defaults in brackets):
+
+    - ``reward_reach`` = -w [1.0] × distance from the grasp point (mid-finger on the palm axis)
+      to the object [m];
+    - ``reward_contact`` = w [0.25] × fraction of fingers whose pads press (> 0.05 N);
+    - ``reward_lift`` = w [2.0] × clip(object rise / 0.08 m, 0, 1);
+    - ``reward_success`` = w [5.0] × is_success;
+    - ``reward_damage`` = -w [10.0], once, when the object becomes damaged;
+    - ``reward_action`` = -w [0.01] × |action|².
+
+    ``info["is_success"]`` is true once the object has been at least ``success_height`` (0.08 m)
+    above its start, without slipping ``max_slip`` (20 mm) relative to the palm, for
+    ``success_hold_s`` (1 s), and is not damaged.
+
+    ## Starting state
+
+    The palm at ``object height + finger length + 10 mm`` above the floor, fingers straight and
+    servos at zero, the object standing on the floor (1 mm drop) at the sampled offset. The
+    object is drawn uniformly from ``objects`` with the environment's generator.
+
+    ## Episode end
+
+    Terminated when the object leaves the workspace (more than 0.15 m from the axis, or below the
+    floor), when it is damaged (its library criterion: contact force over the limit for rigid
+    parts, membrane or film strain for balloon and bag; for the paper box any plastic crease,
+    stricter than the benchmark's spring-back dent), on success if ``terminate_on_success``, or
+    when the simulation goes unstable (MuJoCo warning or non-finite state: ``info["unstable"]``
+    and ``info["error"]``, reward 0, the last finite observation). Truncated after
+    ``max_episode_steps`` (300 control steps, 6 s, by registration).
+
+    ## Arguments
+
+    ``gymnasium.make("gripper:SoftGripperGrasp-v1", **kwargs)``:
+
+    | argument | default | meaning |
+    |---|---|---|
+    | objects | ("block", "cylinder") | library names (or "a,b") sampled per episode; rigid objects are fastest |
+    | pose_noise | 0.010 | x/y offset range ± [m], at most 0.02 |
+    | yaw_noise | True | random yaw for objects that are not symmetric |
+    | mass_noise, friction_noise | 0.0 | ± fractions on the object's mass and friction |
+    | action_mode | "fingers" | "fingers" or "synergy" |
+    | xy_actions | False | add palm x/y set-points to the action |
+    | frame_skip | 10 | physics steps (2 ms) per control step: 20 ms control period |
+    | reward_type | "dense" | "dense" or "sparse" |
+    | reward_weights | see Rewards | dict overriding some weights |
+    | terminate_on_success | True | end the episode once the grasp is held |
+    | success_hold_s | 1.0 | hold time that counts as success [s] |
+    | params | None | GripperParams, or a JSON/TOML parameter file path |
+    | calibration | None | calibration JSON (``gripper calibrate``): fitted hinge springs for ``params`` |
+    | render_mode | None | "rgb_array", "depth_array" or "human" (needs a display) |
+    | width, height | 640, 480 | image size [px] |
+    | camera | "front" | "front", "side", "top", "track" (follows the palm) or "palm" |
+
+    ## Version history
+
+    - v0: first version (mujoco 4, 2 ms physics step, hobby servo).
+    - v0, package 0.4.0: sparse constraint Jacobian and no constraint islands (the same problem,
+      other rounding), the bag's pack touches its film stiffly. Spaces, rewards and episode rules
+      are unchanged, but episodes are not bitwise those of 0.3.0 for the same seed.
+    - v0, package 0.5.0: a closed cut is the squeezed silicone teeth (1.72 N·m/rad at small
+      overrun, stiffening, ``springs.closure``), no longer a hard stop whose give grew with the
+      step: fingers closed at the servo's stall wrap a little further. Spaces, rewards and episode rules are
+      unchanged; episodes differ from 0.4.x for the same seed.
+    - v0, package 0.5.1: under the 2 ms discrete integrator the closed cuts are matched to
+      their design (they were up to 1.8x stiffer at the fingertip); episodes differ from 0.5.0.
+    - v1, package 0.6.0: the hinge springs are the committed calibration of the default design
+      (fitted to the mesh-converged continuum reference, ``docs/calibration.md``) instead of
+      paper 000's Table 2 number, and the default bridge is the one that makes Table 2's spring
+      (read per radian) consistent with the silicone (``docs/consistency.md``). Spaces, rewards
+      and episode rules are unchanged; the dynamics are not, hence the new version. v0 is
+      no longer registered.
+
+    Example:
+        >>> import gymnasium as gym
+        >>> env = gym.make("gripper:SoftGripperGrasp-v1", objects="block")   # doctest: +SKIP
+        >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
+        >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
+    """
+
+    metadata = {"render_modes": RENDER_MODES, "render_fps": 50}
+
+    def __init__(self, objects=("block", "cylinder"), pose_noise: float = 0.010, yaw_noise: bool = True,
+                 mass_noise: float = 0.0, friction_noise: float = 0.0, action_mode: str = "fingers",
+                 xy_actions: bool = False, frame_skip: int = 10, reward_type: str = "dense",
+                 reward_weights: dict | None = None, terminate_on_success: bool = True,
+                 success_hold_s: float = 1.0, params: Any = None, render_mode: str | None = None,
+                 width: int = 640, height: int = 480, camera: str = "front", calibration: Any = None):
+        self.config = make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode,
+                                  xy_actions, frame_skip, reward_type, reward_weights, terminate_on_success,
+                                  success_hold_s, params, calibration)
+        check_render_args(render_mode, width, height, camera)
+        self._init_kwargs = dict(
+            objects=self.config.objects, pose_noise=pose_noise, yaw_noise=yaw_noise, mass_noise=mass_noise,
+            friction_noise=friction_noise, action_mode=action_mode, xy_actions=xy_actions,
+            frame_skip=frame_skip, reward_type=reward_type, reward_weights=reward_weights,
+            terminate_on_success=terminate_on_success, success_hold_s=success_hold_s,
+            params=self.config.params, render_mode=render_mode, width=width, height=height, camera=camera)
+        self.render_mode, self.width, self.height, self.camera = render_mode, width, height, camera
+        self.metadata = {**self.metadata, "render_fps": int(round(1.0 / self.config.control_period))}
+        self.observation_structure, self.observation_space, self.action_space = make_spaces(self.config)
+        self._scenes = SceneSet(self.config)
+        self._stepper = BatchStepper(nthread=0)
+        self._ep: EpisodeState | None = None
+        self._renderer = None
+        self._viewer = None
+
+    # --- gymnasium API ---------------------------------------------------------------------
+
+    def reset(self, *, seed: int | None = None, options: dict | None = None):
+        super().reset(seed=seed)
+        self._ep = start_episode(self._scenes, self.np_random)
+        obs = observe(self._ep, self._ep.data.sensordata)
+        self._ep.last_obs = obs
+        return obs.copy(), {"object": self._ep.scene.obj.name, "is_success": False,
+                            "placement": vars(self._ep.placement).copy()}
+
+    def step(self, action):
+        if self._ep is None:
+            raise RuntimeError("step: call reset() first")
+        action = check_action(action, self.action_space.shape)
+        ep = self._ep
+        ctrl = ep.scene.controls(action)
+        sens, err = self._stepper.step([ep], [ctrl])[0]
+        ep.steps += 1
+        if err is not None:
+            obs, reward, terminated, info = unstable_result(ep, err)
+            return obs, reward, terminated, False, info
+        obs = observe(ep, sens)
+        ep.last_obs = obs
+        reward, terminated, info = evaluate(ep, obs, sens, action, self.config, self.observation_structure)
+        if self.render_mode == "human":
+            self.render()
+        return obs.copy(), reward, terminated, False, info
+
+    def lift_action(self, palm_height: float) -> float:
+        """Action value that sets the palm face ``palm_height`` above the floor [m]."""
+        return self._scene_for_actions().lift_action(palm_height)
+
+    def xy_action(self, offset: float) -> float:
+        """Action value (x or y, with ``xy_actions``) that sets the palm ``offset`` from home [m]."""
+        return self._scene_for_actions().xy_action(offset)
+
+    def servo_action(self, angle: float) -> float:
+        """Action value that sets a servo's spool angle to ``angle`` [rad]."""
+        return self._scene_for_actions().servo_action(angle)
+
+    def _scene_for_actions(self):
+        if self._ep is not None:
+            return self._ep.scene
+        raise RuntimeError("call reset() first")
+
+    def render(self):
+        if self.render_mode is None:
+            gym.logger.warn("render: no render_mode was given at construction")
+            return None
+        if self._ep is None:
+            raise RuntimeError("render: call reset() first")
+        m, d = self._ep.scene.model, self._ep.data
+        if self.render_mode == "human":
+            from gripper.render.renderer import open_viewer
+            if self._viewer is None or self._viewer.model is not m:
+                if self._viewer is not None:
+                    self._viewer.close()
+                self._viewer = open_viewer(m, d)
+            self._viewer.sync()
+            return None
+        from gripper.render.renderer import SceneRenderer
+        if self._renderer is None or self._renderer.model is not m:
+            if self._renderer is not None:
+                self._renderer.close()
+            self._renderer = SceneRenderer(m, width=self.width, height=self.height, camera=self.camera)
+        return self._renderer.render(d, depth=self.render_mode == "depth_array")
+
+    def close(self):
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+        if self._viewer is not None:
+            self._viewer.close()
+            self._viewer = None
+
+    # --- pickling: rebuild from the constructor arguments, then the state -------------------
+
+    def __getstate__(self):
+        episode = None
+        if self._ep is not None:
+            from gripper.envs.core import state_vector
+            ep = self._ep
+            episode = dict(object=ep.scene.obj.name, placement=vars(ep.placement).copy(),
+                           qstate=state_vector(ep), ctrl=ep.data.ctrl.copy(),
+                           book={k: getattr(ep, k) for k in EPISODE_BOOKKEEPING})
+        return {"kwargs": self._init_kwargs, "np_random": self._np_random, "episode": episode}
+
+    def __setstate__(self, st):
+        self.__init__(**st["kwargs"])
+        self._np_random = st["np_random"]
+        if st["episode"] is not None:
+            self._ep = restore_episode(self._scenes, st["episode"])
+
+
+EPISODE_BOOKKEEPING = ("start_pos", "hold_ref", "hold_steps", "peak_strain", "damaged", "last_obs", "steps")
+
+
+def restore_episode(scenes: SceneSet, st: dict) -> EpisodeState:
+    """Rebuild an episode from its pickled form (object, placement, state, bookkeeping)."""
+    import mujoco
+
+    from gripper.envs.core import Scene, load_state
+    from gripper.objects.library import Placement, get_object
+    obj = get_object(st["object"])
+    place = Placement(**st["placement"])
+    scene = Scene(scenes.cfg, obj, place) if obj.is_flex else scenes._rigid[obj.name]
+    if not obj.is_flex:
+        scenes.apply_placement(scene, place)
+    ep = EpisodeState(scene=scene, data=mujoco.MjData(scene.model), placement=place,
+                      start_pos=np.zeros(3), **{k: v for k, v in st["book"].items() if k != "start_pos"})
+    ep.start_pos = st["book"]["start_pos"]
+    load_state(ep, st["qstate"], st["ctrl"])
+    return ep
+
+
+def check_action(action, shape) -> np.ndarray:
+    """The action as float64, or a clear error naming the argument."""
+    try:
+        a = np.asarray(action, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"action: expected numbers of shape {shape}, got {action!r}") from None
+    if a.shape != tuple(shape):
+        raise ValueError(f"action: expected shape {tuple(shape)}, got {a.shape}")
+    if not np.isfinite(a).all():
+        raise ValueError("action: contains NaN or infinity")
+    return a
+

@@ -1,0 +1,180 @@
+"""One scripted grasp trial, and the pull-out test, on the gripper with one object.
+
+The trial is open loop (every command is a function of time), so each phase is stepped with
+``mujoco.rollout`` in chunks of ``protocol.chunk_steps`` steps on the trial's own ``MjData``;
+between chunks the runner checks stability (MuJoCo warnings, non-finite state), slip and
+damage. Cable tension is the tendon-limit force sensor, recorded at every step by the rollout;
+per-finger contact force is the sum of the normal forces of all contacts between that finger's
+elements and the object, read from the contact list at the end of every chunk (so peaks are
+sampled every ``chunk_steps`` steps, 20 ms by default at the 2 ms step).
+
+Example:
+    >>> from gripper.experiments.trial import run_trial
+    >>> rec = run_trial("block", seed=0, index=0)          # doctest: +SKIP
+    >>> rec["success"], rec["peak_total_force_N"]          # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import zlib
+
+import mujoco
+import numpy as np
+
+from gripper.core.hashing import config_hash
+from gripper.core.params import GripperParams
+from gripper.core.provenance import versions
+from gripper.experiments.protocol import GraspProtocol, TrialNoise
+from gripper.objects.library import (
+    GraspObject,
+    Placement,
+    get_object,
+)
+from gripper.sim.damage import damage_measure
+from gripper.sim.probes import ObjectProbe, PeakRecorder
+from gripper.sim.scene import build_grasp_scene
+from gripper.sim.stability import SimulationUnstable
+from gripper.sim.stepping import ChunkStepper, run_phase
+
+
+def sample_placement(obj: GraspObject, noise: TrialNoise, seed: int, index: int) -> Placement:
+    """The perturbation of trial ``index`` of a run with base ``seed``: deterministic, and the
+    same whichever process runs it (the generator is seeded by seed, index and object name)."""
+    rng = np.random.default_rng([seed, index, zlib.crc32(obj.name.encode())])
+    x, y = rng.uniform(-noise.xy, noise.xy, size=2)
+    yaw = rng.uniform(-math.pi, math.pi)
+    ms = rng.uniform(1 - noise.mass_frac, 1 + noise.mass_frac)
+    fs = rng.uniform(1 - noise.friction_frac, 1 + noise.friction_frac)
+    return Placement(x=float(x), y=float(y), yaw=float(yaw) if noise.yaw and not obj.yaw_symmetric else 0.0,
+                     mass_scale=float(ms), friction_scale=float(fs))
+
+
+def grasp_height(p: GripperParams, obj: GraspObject, proto: GraspProtocol) -> float:
+    """Palm-face height above the floor at which the fingers close [m]."""
+    return max(p.finger.length + proto.tip_clearance, obj.height + proto.palm_clearance)
+
+
+def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
+              params: GripperParams | None = None, protocol: GraspProtocol | None = None,
+              noise: TrialNoise | None = None, placement: Placement | None = None,
+              frame_sink=None) -> dict:
+    """Run one scripted grasp trial; return its record (a JSON-ready dict, SI units).
+
+    ``placement`` overrides the sampled perturbation. ``frame_sink`` (optional, see
+    :class:`gripper.render.video.FrameRecorder`) gets ``start(model, probe)`` once and then
+    ``add(phase, states, sensordata)`` after every chunk, for recording a video. An unstable simulation does not raise:
+    the record gets ``status = "error"`` and the message, and counts neither as success nor
+    failure.
+    """
+    obj = get_object(obj) if isinstance(obj, str) else obj.validate()
+    proto = (protocol or GraspProtocol()).validate()
+    p = (params or GripperParams()).validate()
+    p = p.replace(sim=p.sim.replace(timestep=proto.timestep)).validate()
+    noise = (noise or TrialNoise()).validate()
+    place = placement or sample_placement(obj, noise, seed, index)
+    record = {
+        "trial_id": f"{obj.name}-{seed}-{index:04d}", "object": obj.name, "seed": seed, "index": index,
+        "perturbation": {"x_m": place.x, "y_m": place.y, "yaw_rad": place.yaw,
+                         "mass_scale": place.mass_scale, "friction_scale": place.friction_scale},
+        "config_hash": config_hash(p.to_dict(), proto.to_dict(), noise.to_dict(), obj.to_dict()),
+        "versions": versions(),
+    }
+    wall0 = time.perf_counter()
+    m = build_grasp_scene(p, obj, place)
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    probe = ObjectProbe(m, obj, p.layout.n_fingers)
+    rec = PeakRecorder(probe)
+    if frame_sink is not None:
+        frame_sink.start(m, probe)
+        rec.frame_sink = frame_sink
+    try:
+        out = run_protocol(m, d, p, obj, proto, probe, rec)
+        record.update(status="ok", **out)
+    except SimulationUnstable as e:
+        record.update(status="error", success=None, failed_phase=None, error=str(e))
+    record.update(
+        peak_total_force_N=rec.peak_total, peak_finger_force_N=rec.peak_finger.tolist(),
+        peak_cable_tension_N=rec.peak_tension, warnings=int(sum(w.number for w in d.warning)),
+        sim_time_s=float(d.time), wall_time_s=time.perf_counter() - wall0)
+    return record
+
+
+def run_protocol(m, d, p, obj, proto, probe, rec) -> dict:
+    stepper = ChunkStepper(m, d)
+    try:
+        return _protocol_phases(stepper, p, obj, proto, probe, rec)
+    finally:
+        stepper.close()
+
+
+def _protocol_phases(stepper, p, obj, proto, probe, rec) -> dict:
+    m, d = stepper.m, stepper.d
+    ch = proto.chunk_steps
+    z_grasp = grasp_height(p, obj, proto) - p.lift.home_height  # lift_z set-point [m]
+    close_cmd = min(obj.close_command * proto.close_command_scale, float(m.actuator_ctrlrange[probe.servo[0], 1]))
+    close_rate = proto.close_speed / p.servo.spool_radius  # rad/s of spool
+
+    def ctrl(servo, z, x=None):
+        def fn(t):
+            u = np.zeros((len(t), m.nu))
+            u[:, probe.servo] = np.asarray(servo(t))[:, None] if callable(servo) else servo
+            u[:, probe.lift_z] = z(t) if callable(z) else z
+            if x is not None:
+                u[:, probe.lift_x] = x(t)
+            return u
+        return fn
+
+    run_phase(stepper, probe, rec, ctrl(0.0, 0.0), proto.settle_s, ch, "settle")
+    start = probe.object_pos(d)
+    t_app = abs(z_grasp) / proto.approach_speed
+    run_phase(stepper, probe, rec, ctrl(0.0, lambda t: z_grasp * np.minimum(1.0, t / t_app)), t_app, ch, "approach")
+    t_close = close_cmd / close_rate
+    run_phase(stepper, probe, rec, ctrl(lambda t: close_cmd * np.minimum(1.0, t / t_close), z_grasp),
+               t_close + proto.close_hold_s, ch, "close")
+    t_lift = proto.lift_height / proto.lift_speed
+    z_top = z_grasp + proto.lift_height
+    lift = ctrl(close_cmd, lambda t: z_grasp + proto.lift_height * np.minimum(1.0, t / t_lift))
+    run_phase(stepper, probe, rec, lift, t_lift + proto.lift_settle_s, ch, "lift")
+
+    def rel(dd):
+        return probe.object_pos(dd) - dd.xpos[probe.palm]
+
+    rel_lift = rel(d)
+    phase_ok = {}
+
+    def check(name):
+        h = probe.object_pos(d)[2] - start[2]
+        slip = float(np.linalg.norm(rel(d) - rel_lift))
+        phase_ok[name] = (h >= proto.success_height and slip < proto.max_slip, h, slip)
+
+    check("lift")
+    max_slip = [0.0]
+
+    def track(dd):
+        max_slip[0] = max(max_slip[0], float(np.linalg.norm(rel(dd) - rel_lift)))
+        return False
+
+    run_phase(stepper, probe, rec, ctrl(close_cmd, z_top), proto.hold_s, ch, "hold", track)
+    check("hold")
+    w = 2 * math.pi * proto.shake_frequency
+    run_phase(stepper, probe, rec, ctrl(close_cmd, z_top, lambda t: proto.shake_amplitude * np.sin(w * t)),
+               proto.shake_s, ch, "shake", track)
+    check("shake")
+    lift_height = float(probe.object_pos(d)[2] - start[2])
+    slip = float(np.linalg.norm(rel(d) - rel_lift))
+    damage = damage_measure(m, d, obj, probe, peak_strain=rec.peak_strain, peak_force=rec.peak_total)
+    if proto.release:
+        run_phase(stepper, probe, rec, ctrl(lambda t: close_cmd * np.maximum(0.0, 1 - t / proto.release_s), z_top),
+                   proto.release_s, ch, "release")
+    damaged = bool(damage > obj.damage_limit)
+    failed = next((name for name in ("lift", "hold", "shake") if not phase_ok[name][0]), None)
+    if failed is None and damaged:
+        failed = "damage"
+    return {
+        "success": failed is None, "failed_phase": failed, "lift_height_m": lift_height, "slip_m": slip,
+        "max_slip_m": max_slip[0], "damaged": damaged, "damage_measure": damage,
+        "damage_limit": obj.damage_limit, "close_command_rad": close_cmd,
+    }

@@ -1,0 +1,150 @@
+"""Video of one scripted grasp trial: states recorded at the video rate, rendered afterwards.
+
+During the trial a :class:`FrameRecorder` keeps the full physics state (and the cable tensions)
+whenever simulated time passes the next frame time; the states come from the rollout's own
+per-step output, so recording costs no extra simulation. After the trial one
+:class:`gripper.render.renderer.SceneRenderer` renders every kept state, an optional text overlay adds
+phase, time and cable tensions, and ``mediapy`` writes H.264 MP4 (or GIF) through the
+``imageio-ffmpeg`` binary. The file is written to a temporary name beside the target and moved
+into place only when complete, so a failure leaves no half-written file.
+
+Example:
+    >>> from gripper.render.video import record_trial_video
+    >>> info = record_trial_video("block", "block.mp4", seed=0)    # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from gripper.core.atomic import write_atomic
+from gripper.render.renderer import SceneRenderer, check_view
+
+VIDEO_SUFFIXES = (".mp4", ".gif")
+
+
+@dataclass
+class FrameRecorder:
+    """Keeps the trial's state every 1/fps seconds of simulated time."""
+
+    fps: float = 30.0
+    states: list = field(default_factory=list)
+    phases: list = field(default_factory=list)
+    tensions: list = field(default_factory=list)
+
+    def start(self, model, probe) -> None:
+        self.model = model
+        self.tension_adr = probe.tension_adr
+        self._next = 0.0
+
+    def add(self, phase: str, states: np.ndarray, sensordata: np.ndarray) -> None:
+        for i, row in enumerate(states):  # row[0] is the time (mjSTATE_TIME comes first)
+            if row[0] + 1e-9 >= self._next:
+                self.states.append(row.copy())
+                self.phases.append(phase)
+                self.tensions.append(sensordata[i, self.tension_adr].copy())
+                self._next += 1.0 / self.fps
+
+
+def check_output_path(out: str | Path) -> Path:
+    """The output path if a video can be written there, else ValueError naming ``--out``."""
+    out = Path(out)
+    if out.suffix.lower() not in VIDEO_SUFFIXES:
+        raise ValueError(f"--out: video file must end in {' or '.join(VIDEO_SUFFIXES)}, got {out.name!r}")
+    parent = out.parent if str(out.parent) else Path(".")
+    if not parent.is_dir():
+        raise ValueError(f"--out: folder {parent} does not exist")
+    if not os.access(parent, os.W_OK) or (out.exists() and not os.access(out, os.W_OK)):
+        raise ValueError(f"--out: {out} is not writable")
+    return out
+
+
+def _overlay(frame: np.ndarray, lines: list[str]) -> np.ndarray:
+    from PIL import Image, ImageDraw
+
+    img = Image.fromarray(frame)
+    draw = ImageDraw.Draw(img)
+    h = max(10, frame.shape[0] // 32)
+    draw.rectangle([0, 0, frame.shape[1], (h + 4) * len(lines) + 6], fill=(0, 0, 0))
+    for k, text in enumerate(lines):
+        draw.text((6, 4 + k * (h + 4)), text, fill=(255, 255, 255))
+    return np.asarray(img)
+
+
+def render_frames(rec: FrameRecorder, *, width: int = 640, height: int = 480, camera: str = "front",
+                  overlay: bool = True) -> np.ndarray:
+    """Render every recorded state with one renderer; (n, height, width, 3) uint8."""
+    m = rec.model
+    renderer = SceneRenderer(m, width=width, height=height, camera=camera)
+    d = mujoco.MjData(m)
+    frames = np.empty((len(rec.states), height, width, 3), dtype=np.uint8)
+    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
+    try:
+        for i, s in enumerate(rec.states):
+            mujoco.mj_setState(m, d, s, spec)
+            mujoco.mj_forward(m, d)
+            img = renderer.render(d)
+            if overlay:
+                tens = " ".join(f"{t:4.1f}" for t in rec.tensions[i])
+                img = _overlay(img, [f"{rec.phases[i]:<8} t = {d.time:5.2f} s", f"cable tension [N]: {tens}"])
+            frames[i] = img
+    finally:
+        renderer.close()
+    return frames
+
+
+def write_video(frames: np.ndarray, out: str | Path, fps: float) -> None:
+    """Write ``frames`` to ``out`` (.mp4 H.264 or .gif) atomically."""
+    import imageio_ffmpeg
+    import mediapy
+
+    out = check_output_path(out)
+    mediapy.set_ffmpeg(imageio_ffmpeg.get_ffmpeg_exe())
+    codec = "gif" if out.suffix.lower() == ".gif" else "h264"
+    write_atomic(out, lambda tmp: mediapy.write_video(tmp, frames, fps=fps, codec=codec))
+
+
+def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, params=None, protocol=None,
+                       noise=None, width: int = 640, height: int = 480, fps: float = 30.0,
+                       camera: str = "front", overlay: bool = True, still: str | Path | None = None) -> dict:
+    """Run one scripted trial and write its video; return the trial record plus video figures.
+
+    ``still``: also write one frame as PNG, the first of the hold phase (the object lifted).
+
+    Raises:
+        ValueError: bad output path, camera, size or fps (checked before the trial runs).
+    """
+    from gripper.experiments.trial import run_trial
+
+    out = check_output_path(out)
+    if still is not None:
+        still = Path(still)
+        if still.suffix.lower() != ".png" or not (still.parent if str(still.parent) else Path(".")).is_dir():
+            raise ValueError(f"--still: must be a .png in an existing folder, got {still}")
+    check_view(width, height, camera, prefix="--")
+    if not (isinstance(fps, int | float) and 1 <= fps <= 120):
+        raise ValueError(f"--fps: must be in [1, 120], got {fps!r}")
+    rec = FrameRecorder(fps=float(fps))
+    t0 = time.perf_counter()
+    record = run_trial(obj, seed, index, params=params, protocol=protocol, noise=noise, frame_sink=rec)
+    t_sim = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    frames = render_frames(rec, width=width, height=height, camera=camera, overlay=overlay)
+    t_render = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    write_video(frames, out, fps)
+    t_write = time.perf_counter() - t0
+    if still is not None:
+        import mediapy
+
+        k = rec.phases.index("hold") if "hold" in rec.phases else len(frames) // 2
+        write_atomic(still, lambda tmp: mediapy.write_image(tmp, frames[k]))
+    return {**record, "video": str(out), "frames": len(frames), "fps": fps, "width": width, "height": height,
+            "simulate_s": t_sim, "render_s": t_render, "encode_s": t_write,
+            "render_fps": len(frames) / t_render if t_render > 0 else float("inf")}

@@ -1,0 +1,609 @@
+"""Design-parameter studies (paper 001's automated parameter investigation) on this gripper.
+
+A study file (TOML) names a base design, the parameters to vary and the responses to compute:
+
+```toml
+[study]
+name = "cut angle"
+base = "my_params.json"          # optional: a parameter file; defaults otherwise
+design = "one_at_a_time"         # or "factorial" or "latin_hypercube"
+points = 20                      # latin_hypercube only
+seed = 0                         # latin_hypercube sampling and grasp trials
+
+[vary]                           # dotted GripperParams paths
+"finger.cut_angle_deg" = [30, 40, 45, 50, 60]            # a list (one-at-a-time, factorial)
+"servo.spool_radius" = { min = 0.010, max = 0.025 }      # a range (latin_hypercube)
+
+[responses]
+bending = { r_max = 0.45 }                 # bending angle against r (the curve) + its figures
+tension_for_angle = { angle_deg = 90 }     # cable tension needed to bend that far [N]
+blocked_force = { r = 0.15 }               # tip force with the tip held at its straight position [N]
+grasp = { objects = ["block"], trials = 5 }  # success rate and peak contact force
+
+[objective]
+maximize = "bending_angle_max_deg"         # or minimize = "...", used for recommendations
+at_least = { grasp_block_success_rate = 1.0 }   # optional limits a recommended point must meet
+```
+
+Every design point is a complete, reproducible run built from parameters only (a pure function
+of the study and the point), so results do not depend on the number of workers. Points run on
+the benchmark's execution layer (:mod:`gripper.bench.execution`): a Dask LocalCluster by default, an
+existing cluster with ``scheduler``. ``results.jsonl`` is appended in point order (resumable);
+``results.csv`` is the tidy table (one row per point and response value); one PNG per varied
+parameter; ``recommendations.md``. A point that fails is recorded with its error and the study
+goes on.
+
+Hinge stiffness follows the design. A point that changes the finger's geometry (cut angle,
+bridge thickness, hole height, pitch or element count at a kept length) within the committed
+stiffness surrogate's ranges gets the base springs times the continuum reference's stiffness
+ratio (:mod:`gripper.calibration.surrogate`, leave-one-out error in ``docs/calibration.md``)
+and is marked ``calibrated = true``. Young's modulus scales the springs exactly (K ∝ E); a
+Shore A hardness change sets E by Gent's relation (A. N. Gent, Rubber Chem. Technol. 31, 1958:
+E [MPa] = 0.0981 (56 + 7.62336 S) / (0.137505 (254 − 2.54 S))), as a ratio to its value at the
+base hardness, so the base keeps paper 000's 0.44 MPa. Outside the surrogate (another base
+design, width or height changed, a value beyond its ranges) the bridge-beam rule
+k ∝ E·w·t³ sets the springs and the point is marked ``calibrated = false`` with the reason.
+
+Example:
+    >>> from gripper.studies.study import load_study
+    >>> study = load_study("gripper/data/studies/one_at_a_time.toml")   # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import math
+import os
+import re
+import time
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from gripper.core.params import GripperParams
+
+DESIGNS = ("one_at_a_time", "factorial", "latin_hypercube")
+RESPONSES = {
+    "bending": {"r_max": float, "duration": float},
+    "tension_for_angle": {"angle_deg": float},
+    "blocked_force": {"r": float},
+    "grasp": {"objects": list, "trials": int},
+}
+# Parameters whose change alters the finger's bending and so would void a calibration.
+CALIBRATION_SECTIONS = ("finger.", "material.", "springs.")
+BRIDGE_RULE = "hinge stiffness scaled by the bridge-beam rule k ∝ E·w·t³ (not fitted)"
+
+
+def gent_modulus(shore_a: float) -> float:
+    """Young's modulus [Pa] from Shore A hardness by Gent's empirical relation (1958)."""
+    return 0.0981e6 * (56.0 + 7.62336 * shore_a) / (0.137505 * (254.0 - 2.54 * shore_a))
+
+
+@dataclass(frozen=True)
+class Study:
+    """A parsed, validated study (see the module docstring for the file format)."""
+
+    name: str
+    base: GripperParams
+    design: str
+    vary: dict
+    responses: dict
+    objective: tuple[str, str] | None = None
+    limits: tuple = ()  # ("at_least" | "at_most", metric, value): points a recommendation may use
+    points: int = 0
+    seed: int = 0
+    source: str = ""
+    lines: dict = field(default_factory=dict, compare=False)
+
+    def design_points(self) -> list[dict]:
+        """The parameter changes of every point, in a fixed order (point 0 is the base)."""
+        pts: list[dict] = [{}]
+        if self.design == "one_at_a_time":
+            for key, values in self.vary.items():
+                pts += [{key: v} for v in values]
+        elif self.design == "factorial":
+            keys = list(self.vary)
+            pts += [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*self.vary.values())]
+        else:
+            from scipy.stats import qmc
+
+            keys = list(self.vary)
+            u = qmc.LatinHypercube(d=len(keys), seed=self.seed).random(self.points)
+            for row in u:
+                pt = {}
+                for k, x in zip(keys, row, strict=True):
+                    lo, hi = self.vary[k]["min"], self.vary[k]["max"]
+                    v = lo + x * (hi - lo)
+                    pt[k] = int(round(v)) if isinstance(_get(self.base, k), int) else float(v)
+                pts.append(pt)
+        return pts
+
+    def identity(self) -> dict:
+        from gripper.core.provenance import versions
+
+        return {"versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")},
+                "name": self.name, "base": self.base.to_dict(), "design": self.design, "vary": self.vary,
+                "responses": self.responses, "objective": self.objective, "limits": self.limits,
+                "points": self.points,
+                "seed": self.seed}
+
+    def hash(self) -> str:
+        from gripper.core.hashing import config_hash
+        return config_hash(self.identity())
+
+
+def _get(p: GripperParams, dotted: str):
+    section, _, name = dotted.partition(".")
+    return getattr(getattr(p, section), name)
+
+
+def _key_line(text: str, key: str) -> int:
+    """Line number of ``key`` in the TOML text (for error messages); 0 if not found."""
+    pat = re.compile(r'^\s*"?' + re.escape(key) + r'"?\s*=')
+    for i, line in enumerate(text.splitlines(), 1):
+        if pat.match(line):
+            return i
+    return 0
+
+
+def apply_point(base: GripperParams, changes: dict) -> tuple[GripperParams, list[str]]:
+    """The design of one point, and the reasons it is not calibrated (empty: calibrated).
+
+    A point that changes the finger's geometry within the committed stiffness surrogate's
+    ranges (:mod:`gripper.calibration.surrogate`) gets the base springs times the surrogate's
+    stiffness ratio (and the exact E ratio): calibrated on the continuum reference. Otherwise
+    the bridge-beam rule sets them and the point is marked not calibrated, with the reason.
+    """
+    p = base
+    for key, value in changes.items():
+        section, _, name = key.partition(".")
+        sub = getattr(p, section)
+        if isinstance(getattr(sub, name), tuple):
+            value = (value,)
+        p = p.replace(**{section: dataclasses.replace(sub, **{name: value})})
+    if "finger.n_segments" in changes and "finger.pitch" not in changes:
+        length = base.finger.pitch * base.finger.n_segments
+        p = p.replace(finger=dataclasses.replace(p.finger, pitch=length / p.finger.n_segments))
+    if "material.shore_a" in changes and "material.youngs_modulus" not in changes:
+        e = base.material.youngs_modulus * gent_modulus(p.material.shore_a) / gent_modulus(base.material.shore_a)
+        p = p.replace(material=dataclasses.replace(p.material, youngs_modulus=e))
+    e_ratio = p.material.youngs_modulus / base.material.youngs_modulus
+    geometry = {k: _get(p, k) for k in SURROGATE_DIMENSIONS if _get(p, k) != _get(base, k)}
+    surrogate, why_not = _surrogate_for(base, p, changes)
+    reasons = []
+    if "springs.stiffness" in changes:
+        if any(k.startswith(("finger.", "material.")) for k in changes):
+            reasons.append("springs set by hand while the finger or silicone changed")
+    elif surrogate is not None:
+        scale = e_ratio * surrogate.ratio(geometry, base)
+        if scale != 1.0:
+            k = tuple(v * scale for v in base.springs.stiffness)
+            if p.finger.n_hinges != base.finger.n_hinges:
+                k = (float(np.mean(k)),)
+            p = p.replace(springs=dataclasses.replace(p.springs, stiffness=k))
+    else:
+        scale = (e_ratio * (p.finger.width / base.finger.width)
+                 * (p.finger.bridge_thickness / base.finger.bridge_thickness) ** 3)
+        if scale != 1.0:
+            k = tuple(v * scale for v in base.springs.stiffness)
+            if p.finger.n_hinges != base.finger.n_hinges:
+                k = (float(np.mean(k)),)
+            p = p.replace(springs=dataclasses.replace(p.springs, stiffness=k))
+        if any(k.startswith(CALIBRATION_SECTIONS) for k in changes):
+            reasons.append(f"{why_not}; " + BRIDGE_RULE)
+    return p.validate(), reasons
+
+
+SURROGATE_DIMENSIONS = ("finger.cut_angle_deg", "finger.bridge_thickness", "finger.hole_height",
+                        "finger.pitch")
+_SURROGATE_CACHE: dict = {}
+
+
+def _surrogate_for(base: GripperParams, p: GripperParams, changes: dict):
+    """The committed stiffness surrogate if it covers this point, else (None, the reason)."""
+    from gripper.calibration.surrogate import StiffnessSurrogate
+
+    other = [k for k in changes if k.startswith(("finger.", "material."))
+             and k not in SURROGATE_DIMENSIONS
+             and k not in ("finger.n_segments", "material.shore_a", "material.youngs_modulus")]
+    if other:
+        return None, f"{', '.join(other)} changed, outside the stiffness surrogate's dimensions"
+    default = GripperParams()
+    if base.finger != default.finger or base.material != default.material:
+        return None, "the base design is not the default one the surrogate was built around"
+    if "s" not in _SURROGATE_CACHE:
+        _SURROGATE_CACHE["s"] = StiffnessSurrogate.load_default()
+    s = _SURROGATE_CACHE["s"]
+    for k in SURROGATE_DIMENSIONS:
+        lo, hi = s.ranges[k]
+        if not lo - 1e-12 <= _get(p, k) <= hi + 1e-12:
+            return None, f"{k} = {_get(p, k):g} is outside the stiffness surrogate's range"
+    return s, ""
+
+
+def load_study(path: str | Path) -> Study:
+    """Parse and validate a study file; every error names the key and its line.
+
+    Raises:
+        ValueError: unreadable file, bad TOML, unknown key or parameter, wrong type, value out of
+            range (checked by building every design point before any work starts).
+    """
+    path = Path(path)
+    try:
+        text = path.read_text()
+        data = tomllib.loads(text)
+    except OSError as e:
+        raise ValueError(f"study: cannot read {path} ({e.strerror})") from None
+    except tomllib.TOMLDecodeError as e:
+        raise ValueError(f"study: {path} is not valid TOML ({e})") from None
+
+    def err(key, msg):
+        line = _key_line(text, key.split(".")[-1] if key.startswith("responses.") else key)
+        return ValueError(f"study: {path}:{line}: {key}: {msg}")
+
+    for section in data:
+        if section not in ("study", "vary", "responses", "objective"):
+            raise err(section, "unknown section; allowed: study, vary, responses, objective")
+    st = data.get("study", {})
+    for k in st:
+        if k not in ("name", "base", "design", "points", "seed"):
+            raise err(k, "unknown key in [study]; allowed: name, base, design, points, seed")
+    design = st.get("design", "one_at_a_time")
+    if design not in DESIGNS:
+        raise err("design", f"must be one of {', '.join(DESIGNS)}, got {design!r}")
+    base = GripperParams()
+    if st.get("base"):
+        bpath = Path(st["base"])
+        if not bpath.is_absolute():
+            bpath = path.parent / bpath
+        try:
+            base = GripperParams.load(bpath)
+        except ValueError as e:
+            raise err("base", str(e)) from None
+    points = st.get("points", 0)
+    seed = st.get("seed", 0)
+    if not isinstance(seed, int) or isinstance(seed, bool):
+        raise err("seed", f"must be an integer, got {seed!r}")
+    if design == "latin_hypercube" and (not isinstance(points, int) or not 1 <= points <= 100_000):
+        raise err("points", f"must be an integer in [1, 100000] for a latin_hypercube, got {points!r}")
+    vary = data.get("vary", {})
+    if not vary:
+        raise err("vary", "give at least one parameter to vary")
+    for key, spec in vary.items():
+        section, _, name = key.partition(".")
+        sub = getattr(base, section, None)
+        if sub is None or not dataclasses.is_dataclass(sub) or name not in {f.name for f in dataclasses.fields(sub)}:
+            raise err(key, "unknown parameter; use a dotted GripperParams path such as finger.cut_angle_deg")
+        current = getattr(sub, name)
+        want = int if isinstance(current, int) and not isinstance(current, bool) else (
+            float if isinstance(current, float | tuple) else type(current))
+        if design == "latin_hypercube":
+            if not isinstance(spec, dict) or set(spec) != {"min", "max"}:
+                raise err(key, "needs a range { min = ..., max = ... } for a latin_hypercube")
+            values = [spec["min"], spec["max"]]
+        else:
+            if not isinstance(spec, list) or not spec:
+                raise err(key, f"needs a non-empty list of values for a {design} study")
+            values = spec
+        for v in values:
+            ok = isinstance(v, int | float) and not isinstance(v, bool) if want is float else isinstance(v, want)
+            if not ok or (isinstance(v, float) and not math.isfinite(v)):
+                raise err(key, f"expected {want.__name__} values, got {v!r}")
+        if design == "latin_hypercube" and not values[0] < values[1]:
+            raise err(key, f"min must be < max, got {values}")
+        vary[key] = [want(v) for v in values] if design != "latin_hypercube" else {"min": values[0], "max": values[1]}
+    responses = data.get("responses", {})
+    if not responses:
+        raise err("responses", f"give at least one response; allowed: {', '.join(RESPONSES)}")
+    for name, opts in responses.items():
+        if name not in RESPONSES:
+            raise err("responses." + name, f"unknown response; allowed: {', '.join(RESPONSES)}")
+        if not isinstance(opts, dict):
+            raise err("responses." + name, "must be a table, e.g. { r_max = 0.45 }")
+        for k, v in opts.items():
+            typ = RESPONSES[name].get(k)
+            if typ is None:
+                raise err("responses." + name, f"unknown option {k!r}; allowed: {', '.join(RESPONSES[name])}")
+            if typ is float and not (isinstance(v, int | float) and not isinstance(v, bool) and v > 0):
+                raise err("responses." + name, f"{k} must be a number > 0, got {v!r}")
+            if typ is int and not (isinstance(v, int) and not isinstance(v, bool) and v >= 1):
+                raise err("responses." + name, f"{k} must be an integer >= 1, got {v!r}")
+            if typ is list:
+                from gripper.objects.library import get_object
+                if not isinstance(v, list) or not v:
+                    raise err("responses." + name, f"{k} must be a non-empty list of object names")
+                for o in v:
+                    try:
+                        get_object(o)
+                    except ValueError as e:
+                        raise err("responses." + name, str(e)) from None
+    objective = None
+    obj = dict(data.get("objective", {}))
+    limits: dict = {}
+    for bound in ("at_least", "at_most"):
+        table = obj.pop(bound, {})
+        if not isinstance(table, dict):
+            raise err(bound, "must be a table of metric = number, e.g. { grasp_block_success_rate = 1.0 }")
+        for k, v in table.items():
+            if k not in metric_names(responses) or not (isinstance(v, int | float) and not isinstance(v, bool)):
+                raise err(bound, f"{k} = {v!r}: need a metric of the responses ({', '.join(metric_names(responses))}) "
+                                 "and a number")
+            limits[(bound, k)] = float(v)
+    if obj:
+        if len(obj) != 1 or next(iter(obj)) not in ("maximize", "minimize"):
+            raise err("objective", "give exactly one of maximize = \"...\" or minimize = \"...\"")
+        sense, metric = next(iter(obj.items()))
+        objective = (sense, str(metric))
+    study = Study(name=str(st.get("name", path.stem)), base=base, design=design, vary=vary, responses=responses,
+                  objective=objective, points=points, seed=seed, source=str(path),
+                  limits=tuple((b, k, v) for (b, k), v in limits.items()))
+    for pt in study.design_points():  # every point must build before any work starts
+        try:
+            apply_point(base, pt)
+        except ValueError as e:
+            key = next(iter(pt)) if pt else "base"
+            raise err(key, f"value {pt.get(key)!r} gives an invalid design ({e})") from None
+    if objective is not None and objective[1] not in metric_names(responses):
+        raise err("objective", f"unknown metric {objective[1]!r}; available: {', '.join(metric_names(responses))}")
+    return study
+
+
+def metric_names(responses: dict) -> list[str]:
+    names = []
+    if "bending" in responses:
+        names += ["bending_angle_max_deg", "bending_angle_at_half_r_deg", "tension_at_r_max_N"]
+    if "tension_for_angle" in responses:
+        names += ["tension_for_angle_N"]
+    if "blocked_force" in responses:
+        names += ["blocked_tip_force_N"]
+    if "grasp" in responses:
+        for o in responses["grasp"].get("objects", ["block"]):
+            names += [f"grasp_{o}_success_rate", f"grasp_{o}_median_peak_force_N"]
+    return names
+
+
+# --- responses -------------------------------------------------------------------------------
+
+# Samples of the bending curve kept per point (r from 0 to r_max).
+BEND_CURVE_POINTS = 21
+# Blocked-force test: ramp the servo to the commanded shortening over this time, then hold [s];
+# both well past the finger's slowest mode (≈ 0.05 s) so the force is static.
+BLOCKED_RAMP_S = 0.5
+BLOCKED_HOLD_S = 0.5
+
+
+def _bending(p: GripperParams, opts: dict):
+    from gripper.experiments.bending import BendingConfig, run_bending_test
+
+    cfg = BendingConfig(r_max=float(opts.get("r_max", 0.45)), duration=float(opts.get("duration", 2.0)),
+                        n_points=BEND_CURVE_POINTS)
+    return run_bending_test(cfg, p)
+
+
+def blocked_tip_force(p: GripperParams, r: float) -> float:
+    """Tip force [N] of one finger whose tip is held at its straight position (a ball joint to
+    the world) while the servo reels in ``r`` × finger length of cable (quasi-static)."""
+    import mujoco
+
+    from gripper.model.builders import build_bending_spec
+    from gripper.model.names import FingerNames
+    from gripper.sim.stability import check_stable
+
+    spec = build_bending_spec(p, timestep=5e-4)
+    names = FingerNames("f0", p.finger.n_segments)
+    m0 = spec.compile()
+    d0 = mujoco.MjData(m0)
+    mujoco.mj_forward(m0, d0)
+    tip_body = m0.body(names.bodies[-1]).id
+    anchor = d0.xmat[tip_body].reshape(3, 3).T @ (d0.site_xpos[m0.site(names.tip).id] - d0.xpos[tip_body])
+    spec.add_equality(type=mujoco.mjtEq.mjEQ_CONNECT, objtype=mujoco.mjtObj.mjOBJ_BODY,
+                      name1=names.bodies[-1], name2="world", data=list(anchor) + [0.0] * 9)
+    m = spec.compile()
+    d = mujoco.MjData(m)
+    servo = m.actuator(names.servo).id
+    target = r * p.finger.length * m.actuator_gear[servo, 0]
+    if target > m.actuator_ctrlrange[servo, 1]:
+        raise ValueError(f"blocked_force.r: {r} needs more than the servo's travel with this spool")
+    n_ramp, n_hold = int(BLOCKED_RAMP_S / m.opt.timestep), int(BLOCKED_HOLD_S / m.opt.timestep)
+    for k in range(n_ramp + n_hold):
+        d.ctrl[servo] = target * min(1.0, (k + 1) / n_ramp)
+        mujoco.mj_step(m, d)
+    check_stable(m, d, "blocked-force test")
+    mujoco.mj_forward(m, d)
+    rows = d.efc_type[:d.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY
+    return float(np.linalg.norm(d.efc_force[:d.nefc][rows]))
+
+
+def run_point(study: Study, index: int, changes: dict) -> dict:
+    """Every response of one design point; errors are recorded, not raised."""
+    t0 = time.perf_counter()
+    rec = {"point": index, "changes": changes, "status": "ok", "metrics": {}, "curves": {}}
+    try:
+        p, reasons = apply_point(study.base, changes)
+        rec["calibrated"] = not reasons
+        rec["calibration_note"] = "; ".join(reasons)
+        resp = study.responses
+        met = rec["metrics"]
+        if "bending" in resp or "tension_for_angle" in resp:
+            res = _bending(p, resp.get("bending", {}))
+            rec["curves"] = {"r": res.r_command.tolist(), "bending_angle_deg": res.bending_angle_deg.tolist(),
+                             "tension_N": res.tension_N.tolist()}
+            if "bending" in resp:
+                met["bending_angle_max_deg"] = float(res.bending_angle_deg.max())
+                met["bending_angle_at_half_r_deg"] = float(np.interp(0.5 * res.r_command[-1], res.r_command,
+                                                                     res.bending_angle_deg))
+                met["tension_at_r_max_N"] = float(res.tension_N[-1])
+            if "tension_for_angle" in resp:
+                goal = float(resp["tension_for_angle"].get("angle_deg", 90.0))
+                ang = np.maximum.accumulate(res.bending_angle_deg)
+                met["tension_for_angle_N"] = (float(np.interp(goal, ang, res.tension_N))
+                                              if ang[-1] >= goal else None)
+        if "blocked_force" in resp:
+            met["blocked_tip_force_N"] = blocked_tip_force(p, float(resp["blocked_force"].get("r", 0.15)))
+        if "grasp" in resp:
+            from gripper.experiments.trial import run_trial
+            g = resp["grasp"]
+            for o in g.get("objects", ["block"]):
+                recs = [run_trial(o, study.seed, i, params=p) for i in range(int(g.get("trials", 5)))]
+                ok = [r for r in recs if r["status"] == "ok"]
+                met[f"grasp_{o}_success_rate"] = (sum(bool(r["success"]) for r in ok) / len(ok)) if ok else None
+                met[f"grasp_{o}_median_peak_force_N"] = float(np.median([r["peak_total_force_N"] for r in recs]))
+    except Exception as e:  # a failing point is recorded and the study goes on
+        rec.update(status="error", error=f"{type(e).__name__}: {e}")
+    rec["wall_time_s"] = time.perf_counter() - t0
+    return rec
+
+
+# --- running, tables, plots ------------------------------------------------------------------
+
+def run_study(study: Study, out: str | Path, *, workers: int = 1, scheduler: str | None = None,
+              progress: bool = True) -> list[dict]:
+    """Run (or resume) the study into ``out``; write the table, plots and recommendations."""
+    from gripper.bench.execution import claim_run_dir, read_jsonl, run_ordered
+
+    if not isinstance(workers, int) or workers < 1:
+        raise ValueError(f"--workers: must be an integer >= 1, got {workers!r}")
+    out = Path(out)
+    claim_run_dir(out, "study.json", "study", study.hash(), study.identity(), "another study")
+    path = out / "results.jsonl"
+    points = study.design_points()
+    done = {r["point"]: r for r in read_jsonl(path)}
+    todo = [(study, i, pt) for i, pt in enumerate(points) if i not in done]
+    run_ordered(todo, run_point, path, workers=workers, scheduler=scheduler,
+                on_record=lambda rec: done.__setitem__(rec["point"], rec),
+                progress=(len(points), len(points) - len(todo), "design points") if progress else None)
+    records = [done[i] for i in range(len(points))]
+    write_table(records, study, out / "results.csv")
+    write_plots(records, study, out)
+    (out / "recommendations.md").write_text(recommendations(records, study))
+    return records
+
+
+def write_table(records: list[dict], study: Study, path: Path) -> None:
+    """Tidy CSV: one row per point and metric, with the varied parameters as columns."""
+    import csv
+
+    keys = list(study.vary)
+    tmp = path.with_suffix(".tmp")
+    with open(tmp, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["point", *keys, "status", "calibrated", "metric", "value", "error"])
+        for r in records:
+            vals = [r["changes"].get(k, _get(study.base, k)) for k in keys]
+            vals = [v[0] if isinstance(v, tuple | list) else v for v in vals]
+            if r["status"] != "ok":
+                w.writerow([r["point"], *vals, "error", "", "", "", r.get("error", "")])
+                continue
+            for name, value in r["metrics"].items():
+                w.writerow([r["point"], *vals, "ok", r["calibrated"], name, value, ""])
+    os.replace(tmp, path)
+
+
+def _series(records: list[dict], study: Study, key: str) -> list[tuple[float, dict]]:
+    """(value of ``key``, record) of the points that show the effect of ``key``: the base plus
+    the points varying only ``key`` (one-at-a-time), or every point (factorial, hypercube)."""
+    out = []
+    base_value = _get(study.base, key)
+    base_value = base_value[0] if isinstance(base_value, tuple) else base_value
+    for r in records:
+        if r["status"] != "ok":
+            continue
+        if study.design == "one_at_a_time" and set(r["changes"]) - {key}:
+            continue
+        out.append((float(r["changes"].get(key, base_value)), r))
+    return sorted(out, key=lambda vr: vr[0])
+
+
+def write_plots(records: list[dict], study: Study, out: Path) -> list[Path]:
+    """One PNG per varied parameter: each scalar response against the parameter, plus the
+    bending curves of its points (paper 001 Figs. 12-16 style)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from gripper.core.atomic import write_atomic
+
+    names = metric_names(study.responses)
+    files = []
+    for key in study.vary:
+        series = _series(records, study, key)
+        if not series:
+            continue
+        has_curve = any(r["curves"] for _, r in series)
+        n = len(names) + int(has_curve)
+        ncol = min(n, 4)
+        nrow = -(-n // ncol)
+        fig, axes = plt.subplots(nrow, ncol, figsize=(3.6 * ncol, 3.2 * nrow), squeeze=False)
+        flat = list(axes.ravel())
+        for ax in flat[n:]:
+            ax.axis("off")
+        xs = [v for v, _ in series]
+        for ax, name in zip(flat, names, strict=False):
+            ys = [r["metrics"].get(name) for _, r in series]
+            ys = [np.nan if y is None else y for y in ys]
+            ax.plot(xs, ys, "o-" if study.design == "one_at_a_time" else "o")
+            ax.set_xlabel(key)
+            ax.set_title(name, fontsize=9)
+            ax.grid(alpha=0.3)
+        if has_curve:
+            ax = flat[n - 1]
+            for v, r in series:
+                if r["curves"]:
+                    ax.plot(r["curves"]["r"], r["curves"]["bending_angle_deg"], label=f"{v:g}")
+            ax.set_xlabel("cable shortening rate r [-]")
+            ax.set_ylabel("bending angle [deg]")
+            if len(series) <= 12:
+                ax.legend(title=key, fontsize=7, title_fontsize=7)
+            ax.grid(alpha=0.3)
+        fig.suptitle(f"{study.name}: {key}")
+        fig.tight_layout()
+        path = out / f"plot_{key.replace('.', '_')}.png"
+        write_atomic(path, lambda tmp, fig=fig: fig.savefig(tmp, dpi=90, format="png"))
+        plt.close(fig)
+        files.append(path)
+    return files
+
+
+def recommendations(records: list[dict], study: Study) -> str:
+    """Markdown table: per varied parameter, the value that best meets the objective, and why."""
+    names = metric_names(study.responses)
+    sense, metric = study.objective or ("maximize", names[0])
+    def admissible(r) -> bool:
+        for bound, k, v in study.limits:
+            x = r["metrics"].get(k)
+            if x is None or (x < v if bound == "at_least" else x > v):
+                return False
+        return True
+
+    rule = "".join(f"; only points with {k} {'>=' if b == 'at_least' else '<='} {v:g}" for b, k, v in study.limits)
+    lines = [f"# {study.name}: recommendations", "",
+             f"Objective: {sense} `{metric}`{rule}. One-at-a-time: each parameter moves alone from the base "
+             "design; other designs: the best point overall per parameter.", "",
+             "| parameter | recommended value | reason from the data | calibrated |", "|---|---|---|---|"]
+    base = next((r for r in records if r["point"] == 0 and r["status"] == "ok"), None)
+    base_val = base["metrics"].get(metric) if base else None
+    for key in study.vary:
+        given = [(v, r) for v, r in _series(records, study, key) if r["metrics"].get(metric) is not None]
+        series = [(v, r) for v, r in given if admissible(r)]
+        if not series:
+            lines.append(f"| {key} | - | no point gave `{metric}` within the limits | - |")
+            continue
+        pick = (max if sense == "maximize" else min)(series, key=lambda vr: vr[1]["metrics"][metric])
+        vals = [r["metrics"][metric] for _, r in series]
+        reason = (f"{metric} = {pick[1]['metrics'][metric]:.4g} (range {min(vals):.4g} to {max(vals):.4g} over "
+                  f"{len(series)} points" + (f"; base {base_val:.4g})" if base_val is not None else ")"))
+        excluded = [v for v, r in given if not admissible(r)]
+        if excluded:
+            reason += f"; {', '.join(f'{v:g}' for v in excluded)} excluded by the limits"
+        failed = sum(1 for r in records if r["status"] != "ok" and key in r["changes"])
+        if failed:
+            reason += f"; {failed} point(s) failed"
+        lines.append(f"| {key} | {pick[0]:g} | {reason} | {'yes' if pick[1]['calibrated'] else 'no'} |")
+    notes = sorted({r["calibration_note"] for r in records if r["status"] == "ok" and r.get("calibration_note")})
+    if notes:
+        lines += ["", "Not calibrated: " + " / ".join(notes) + "."]
+    return "\n".join(lines) + "\n"

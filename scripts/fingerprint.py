@@ -1,0 +1,102 @@
+"""Behaviour fingerprint: hashes of what the simulator computes, to show that a refactor
+changed nothing.
+
+Three artefacts, each through the public entry points only (``gym.make`` and the CLI), so the
+same script runs on any version:
+
+- ``env``: SHA-256 of every observation, reward and termination flag of seeded random-action
+  episodes of ``SoftGripperGrasp-v1`` (block, then cylinder);
+- ``bench``: SHA-256 of ``trials.jsonl`` from ``gripper bench --trials 2`` on the five default
+  objects, records sorted by (object, index), with the keys that are not physics removed: the
+  wall time, the package versions and the run's configuration hash (which embeds the version);
+- ``study``: SHA-256 of ``results.csv`` from a two-point study with every response kind, with
+  the wall-time and configuration-hash columns removed.
+
+Run: .venv/bin/python scripts/fingerprint.py --out runs/fingerprint [--json FILE]
+"""
+
+import argparse
+import csv
+import hashlib
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+
+NOT_PHYSICS = ("wall_time_s", "versions", "run_config_hash", "config_hash")
+
+STUDY = """
+[study]
+name = "fingerprint"
+design = "one_at_a_time"
+seed = 0
+
+[vary]
+"finger.cut_angle_deg" = [40.0]
+
+[responses]
+bending = { r_max = 0.45 }
+tension_for_angle = { angle_deg = 90.0 }
+blocked_force = { r = 0.15 }
+grasp = { objects = ["block"], trials = 1 }
+"""
+
+
+def env_hash(steps: int = 120) -> str:
+    h = hashlib.sha256()
+    for obj in ("block", "cylinder"):
+        env = gym.make("gripper:SoftGripperGrasp-v1", objects=obj)
+        env.action_space.seed(0)
+        obs, _ = env.reset(seed=0)
+        h.update(np.asarray(obs, np.float64).tobytes())
+        for _ in range(steps):
+            obs, rew, term, trunc, _ = env.step(env.action_space.sample())
+            h.update(np.asarray(obs, np.float64).tobytes())
+            h.update(np.float64(rew).tobytes() + bytes([term, trunc]))
+            if term or trunc:
+                obs, _ = env.reset()
+        env.close()
+    return h.hexdigest()
+
+
+def gripper_cli(*args: str) -> None:
+    exe = Path(sys.executable).with_name("gripper")
+    subprocess.run([str(exe), *args, "--no-progress"], check=True, stdout=subprocess.DEVNULL)
+
+
+def bench_hash(out: Path) -> str:
+    gripper_cli("bench", "--trials", "2", "--workers", "2", "--out", str(out / "bench"))
+    recs = [json.loads(line) for line in (out / "bench" / "trials.jsonl").read_text().splitlines()]
+    recs = [{k: v for k, v in r.items() if k not in NOT_PHYSICS} for r in recs]
+    recs.sort(key=lambda r: (r["object"], r["index"]))
+    return hashlib.sha256(json.dumps(recs, sort_keys=True).encode()).hexdigest()
+
+
+def study_hash(out: Path) -> str:
+    toml = out / "study.toml"
+    toml.write_text(STUDY)
+    gripper_cli("study", str(toml), "--workers", "2", "--out", str(out / "study"))
+    with open(out / "study" / "results.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    rows = [{k: v for k, v in r.items() if k not in NOT_PHYSICS} for r in rows]
+    return hashlib.sha256(json.dumps(rows, sort_keys=True).encode()).hexdigest()
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", type=Path, required=True, help="a new folder for the runs")
+    ap.add_argument("--json", type=Path, help="also write the hashes here")
+    args = ap.parse_args()
+    args.out.mkdir(parents=True, exist_ok=False)
+    result = {"env": env_hash(), "bench": bench_hash(args.out), "study": study_hash(args.out)}
+    for k, v in result.items():
+        print(f"{k:6s} {v}")
+    if args.json:
+        args.json.write_text(json.dumps(result, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    main()
