@@ -35,7 +35,9 @@ from pathlib import Path
 
 import numpy as np
 
+from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
 from gripper.bench.execution import claim_run_dir, read_jsonl, run_ordered
+from gripper.core.fields import Validated
 from gripper.core.hashing import config_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
@@ -56,11 +58,11 @@ def wilson_interval(successes: int, n: int, z: float = 1.959964) -> tuple[float,
 
 
 @dataclass(frozen=True)
-class BenchConfig:
+class BenchConfig(Validated):
     """What to run. ``trials`` per object; ``seed`` the base seed of every trial."""
 
     objects: tuple[str, ...] = DEFAULT_OBJECTS
-    trials: int = 10
+    trials: int = DEFAULT_TRIALS
     seed: int = 0
     params: GripperParams = field(default_factory=GripperParams)
     protocol: GraspProtocol = field(default_factory=GraspProtocol)
@@ -110,7 +112,7 @@ def read_trials(path: Path) -> list[dict]:
     return read_jsonl(path)
 
 
-def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = 1, scheduler: str | None = None,
+def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
                   progress: bool = True) -> dict:
     """Run (or resume) the benchmark into ``out``; return the summary dict.
 

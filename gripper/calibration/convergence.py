@@ -136,10 +136,10 @@ def linear_compliance(params: GripperParams | None = None, mesh: MeshResolution 
     share = 0.5 if fm.symmetric else 1.0
     w = fm.node_weight[fm.anchor_nodes]
     f[basis.nodal_dofs[0, fm.anchor_nodes]] = -CHECK_TENSION * share * w / w.sum()
-    fixed = [basis.nodal_dofs[:, fm.points[:, 0] <= clamp_length + 1e-9].ravel()]
+    fixed_parts = [basis.nodal_dofs[:, fm.points[:, 0] <= clamp_length + 1e-9].ravel()]
     if fm.symmetric:
-        fixed.append(basis.nodal_dofs[1, fm.plane_nodes])
-    fixed = np.unique(np.concatenate(fixed))
+        fixed_parts.append(basis.nodal_dofs[1, fm.plane_nodes])
+    fixed = np.unique(np.concatenate(fixed_parts))
     if fmbs is None:
         u = solve_clamped(K, f, fixed, basis.doflocs)
     else:
@@ -175,7 +175,7 @@ def _solve_fmbs(p: GripperParams, fm, K, f: np.ndarray, fixed: np.ndarray, basis
     own = [d for d in range(n) if not fixed_mask[d] and not in_body[d // 3]]
     rows, cols, vals = list(own), list(range(len(own))), [1.0] * len(own)
     col = len(own)
-    body_cols = []
+    body_cols: list[tuple[int, int, list[tuple[int, float]]]] = []
     for nodes, origin, parent in bodies:
         if parent < 0:  # x and z slides and a rotation of its own
             ux, uz, th = col, col + 1, col + 2

@@ -42,6 +42,7 @@ import numpy as np
 from mujoco import minimize
 
 from gripper.calibration.reference import BendingRecord
+from gripper.core.fields import Validated
 from gripper.core.params import GripperParams
 from gripper.model.builders import add_defaults, add_element_meshes, add_finger, set_options
 from gripper.model.names import FingerNames
@@ -58,7 +59,7 @@ STATIC_SETTLE_TAU = 0.1  # s, damping over stiffness of the static runs
 
 
 @dataclass(frozen=True)
-class FitConfig:
+class FitConfig(Validated):
     """Settings of the hinge fit.
 
     Attributes:
@@ -142,7 +143,8 @@ def build_hinge_finger(p: GripperParams, timestep: float, *, static: bool = Fals
     the discrete integrator (implicit in the springs) for runs to rest, see ``STATIC_STEP``.
     """
     spec = mujoco.MjSpec()
-    set_options(spec, p.replace(sim=p.sim.replace(timestep=timestep, gravity=0.0)))
+    set_options(spec, p.replace(sim=p.sim.replace(gravity=0.0)))
+    spec.option.timestep = timestep  # STATIC_STEP is beyond sim.timestep's range: runs to rest only
     spec.option.integrator = (mujoco.mjtIntegrator.mjINT_DISCRETE if static
                               else mujoco.mjtIntegrator.mjINT_IMPLICITFAST)
     spec.modelname = "finger_calibration"
@@ -445,7 +447,7 @@ def fit_metrics(record: BendingRecord, fitted: BendingRecord, p: GripperParams,
         tip_rms = float(np.sqrt(np.nanmean(dt ** 2))) if np.isfinite(dt).any() else None
         ang_rms = (np.sqrt(np.nanmean(da ** 2, axis=0)).tolist()
                    if np.isfinite(da).any() else None)
-    out = {
+    out: dict[str, object] = {
         "samples": int(len(fit_idx)),
         "tip_rms_m": tip_rms,
         "tip_rms_frac": tip_rms / L if tip_rms is not None else None,

@@ -58,6 +58,7 @@ import mujoco
 import numpy as np
 
 from gripper.calibration.reference import BendingRecord, ReferenceConfig, ReferenceFinger, run_bending_record
+from gripper.core.fields import Validated
 from gripper.core.params import (
     DEG,
     PAPER_HINGE_STIFFNESS,
@@ -73,7 +74,7 @@ TARGET_CLOSURE_FRACTION = 0.45
 
 
 @dataclass(frozen=True)
-class FmbsConfig:
+class FmbsConfig(Validated):
     """The flexible multibody model's own settings (the rest is a :class:`ReferenceConfig`).
 
     Attributes:

@@ -84,7 +84,7 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
     wanted += ang_cols if all(has_ang) else []
     wanted += ["tip_x_m", "tip_z_m"] if all(has_tip) else []
     col = {c: header.index(c) for c in wanted}
-    values = {c: [] for c in wanted}
+    values: dict[str, list[float]] = {c: [] for c in wanted}
     for lineno, row in enumerate(rows[1:], start=2):
         if len(row) != len(header):
             raise ValueError(f"data file {name}: row {lineno} has {len(row)} cells, the header "
@@ -116,17 +116,17 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
             hinge = np.diff(angles, axis=1)
             closed = hinge > closure_angle_deg + CLOSED_CUT_MARGIN_DEG
             if closed.any():
-                row, j = (int(v) for v in np.argwhere(closed)[0])
+                r, j = (int(v) for v in np.argwhere(closed)[0])
                 raise ValueError(
-                    f"data file {name}: row {row + 2}: hinge B{j + 1}-B{j + 2} at {hinge[row, j]:.1f}°, "
+                    f"data file {name}: row {r + 2}: hinge B{j + 1}-B{j + 2} at {hinge[r, j]:.1f}°, "
                     f"past the cut's closure angle {closure_angle_deg:.1f}°; the fit needs open "
                     f"cuts, drop rows with closed cuts")
     tip = np.full((n, 2), np.nan)
     if all(has_tip):
         tip[:] = np.column_stack([values["tip_x_m"], values["tip_z_m"]])
     order = np.argsort(tension, kind="stable")
-    r = np.array(values["r"]) if "r" in values else np.full(n, np.nan)
-    return BendingRecord(t=np.arange(n, dtype=float), tension_N=tension[order], r=r[order],
+    rate = np.array(values["r"]) if "r" in values else np.full(n, np.nan)
+    return BendingRecord(t=np.arange(n, dtype=float), tension_N=tension[order], r=rate[order],
                          element_angles_deg=angles[order], tip_xz_m=tip[order],
                          static=np.arange(n))
 

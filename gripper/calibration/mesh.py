@@ -52,12 +52,13 @@ from functools import cached_property
 
 import numpy as np
 
+from gripper.core.fields import Validated
 from gripper.core.params import FingerGeometry
 from gripper.model.geometry import element_kind
 
 
 @dataclass(frozen=True)
-class MeshResolution:
+class MeshResolution(Validated):
     """Cell counts of the mapped mesh at ``scale`` = 1 (each count is multiplied by ``scale``).
 
     Attributes:

@@ -27,6 +27,7 @@ import shutil
 import tempfile
 from dataclasses import asdict, replace
 from pathlib import Path
+from typing import Any
 
 from gripper.calibration.calfile import Calibration, design_hash
 from gripper.calibration.fit import FitConfig, FitResult, fit_hinges
@@ -115,7 +116,8 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
                              "reference's transient")
         record = read_measured_csv(data, p.finger.n_segments, min_points=p.finger.n_hinges,
                                    closure_angle_deg=p.finger.closure_angle_deg)
-        source, settings = "measured", {"data": str(data)}
+        source = "measured"
+        settings: dict[str, Any] = {"data": str(data)}
         say(f"read {len(record.static)} static points from {data}")
     out.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=out.parent, prefix=f".{out.name}.") as tmp_name:

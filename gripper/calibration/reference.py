@@ -67,11 +67,12 @@ import mujoco
 import numpy as np
 
 from gripper.calibration.mesh import FingerMesh, MeshResolution, finger_mesh
+from gripper.core.fields import Validated
 from gripper.core.params import GripperParams
+from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
 from gripper.model.builders import GUIDE_DEPTH
 from gripper.sim.stability import SimulationUnstable, check_stable
 
-PAPER_STEP = 5.0e-4  # s, paper 000 §IV
 PAPER_DURATION = 2.0  # s, paper 000 §IV
 PAPER_MODAL_DAMPING = 0.5  # -, paper 000 Table 2 ("modal damping 0.5")
 RAMP_TIME = 0.05  # s, each tension step's half-cosine ramp: 10 x shorter than a hold
@@ -83,7 +84,7 @@ SYMMETRY_STIFFNESS_FACTOR = 1e6  # -, symmetry-plane spring over E x width (see 
 
 
 @dataclass(frozen=True)
-class ReferenceConfig:
+class ReferenceConfig(Validated):
     """Settings of the reference bending test.
 
     Attributes:
@@ -127,7 +128,7 @@ class ReferenceConfig:
     tension_max: float = 0.25
     n_levels: int = 5
     duration: float = PAPER_DURATION
-    timestep: float = PAPER_STEP
+    timestep: float = PAPER_BENDING_TIMESTEP
     damping_ratio: float = PAPER_MODAL_DAMPING
     first_mode_hz: float = 1.5
     mesh_mode_damping: float = 1e-5

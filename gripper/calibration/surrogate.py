@@ -132,16 +132,16 @@ class StiffnessSurrogate:
             k.append(equivalent_stiffness_raw(q))
             kept.append(i)
             say(f"surrogate point {i + 1}/{len(x)}: K_eq {k[-1]:.4g} N·m/rad")
-        k = np.asarray(k)
+        stiffness = np.asarray(k)
         x = x[kept]
         k0 = equivalent_stiffness_raw(p)
         F = _features(x)
-        y = np.log(k)
+        y = np.log(stiffness)
         coef = np.linalg.lstsq(F, y, rcond=None)[0]
         # Leave-one-out residuals of a linear least-squares fit, exactly: e_i / (1 - h_ii).
         H = F @ np.linalg.pinv(F)
         loo = (y - F @ coef) / (1.0 - np.diag(H))
-        return cls(ranges={d: list(rng[d]) for d in DIMENSIONS}, samples=x, stiffness=k,
+        return cls(ranges={d: list(rng[d]) for d in DIMENSIONS}, samples=x, stiffness=stiffness,
                    default_stiffness=float(k0), coefficients=coef,
                    loo_error=np.expm1(np.abs(loo)), correction=correction or {})
 
@@ -241,13 +241,14 @@ def correction_model(params: GripperParams | None = None,
     lt = np.log(np.array([t for t, _ in pts]) / 0.003)
     lc = np.log(np.array([c for _, c in pts]))
     slope, intercept = np.polyfit(lt, lc, 1)
+    model_checks: list[dict] = []
     model = {"points": [list(q) for q in pts], "slope": float(slope),
-             "intercept": float(intercept), "checks": []}
+             "intercept": float(intercept), "checks": model_checks}
     for values in checks:
         t = values.get("finger.bridge_thickness", p.finger.bridge_thickness)
         measured = factor(values)
         modelled = math.exp(intercept + slope * math.log(t / 0.003))
-        model["checks"].append({"design": values, "measured": measured, "modelled": modelled,
+        model_checks.append({"design": values, "measured": measured, "modelled": modelled,
                                 "error": modelled / measured - 1.0})
     return model
 

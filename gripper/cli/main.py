@@ -14,8 +14,10 @@ import argparse
 import json
 import sys
 
-from gripper.core.params import GripperParams
-from gripper.sim.stability import SimulationUnstable
+from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
+from gripper.core.params import GripperParams, parameter_help
+from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
+from gripper.experiments.protocol import GraspProtocol, TrialNoise
 
 EXIT_BAD_INPUT = 2
 EXIT_UNSTABLE = 3
@@ -279,11 +281,15 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True)
 
     def with_protocol(p):
-        p.add_argument("--noise", type=float, default=0.010, help="x/y placement noise half-range [m] (default 0.01)")
-        p.add_argument("--mass-noise", type=float, default=0.0, help="mass noise fraction, e.g. 0.2 (default 0)")
-        p.add_argument("--friction-noise", type=float, default=0.0, help="friction noise fraction (default 0)")
-        p.add_argument("--close-scale", type=float, default=1.0,
-                       help="multiplier on each object's closing command (default 1; >1 squeezes harder)")
+        noise, proto = TrialNoise(), GraspProtocol()
+        p.add_argument("--noise", type=float, default=noise.xy,
+                       help="x/y placement noise half-range [m] (default %(default)s)")
+        p.add_argument("--mass-noise", type=float, default=noise.mass_frac,
+                       help="mass noise fraction, e.g. 0.2 (default %(default)s)")
+        p.add_argument("--friction-noise", type=float, default=noise.friction_frac,
+                       help="friction noise fraction (default %(default)s)")
+        p.add_argument("--close-scale", type=float, default=proto.close_command_scale,
+                       help="multiplier on each object's closing command (default %(default)s; >1 squeezes harder)")
         p.add_argument("--release", action="store_true", help="open the fingers at the end of each trial")
         return p
 
@@ -317,14 +323,20 @@ def build_parser() -> argparse.ArgumentParser:
                         "and the bending-angle curve")
     b.add_argument("--r-max", type=float, default=0.45, help="final shortening rate (default 0.45)")
     b.add_argument("--duration", type=float, default=2.0, help="ramp time [s] (default 2)")
-    b.add_argument("--timestep", type=float, default=5e-4, help="step [s] (default 5e-4)")
+    b.add_argument("--timestep", type=float, default=PAPER_BENDING_TIMESTEP,
+                   help=f"step [s] (default {PAPER_BENDING_TIMESTEP:g}, paper 000 §IV)")
     b.add_argument("--points", type=int, default=101, help="samples or set-points (default 101)")
     b.set_defaults(func=_cmd_bend)
 
     s = with_params(sub.add_parser("servo", help="servo model against its datasheet"))
     s.set_defaults(func=_cmd_servo)
 
-    p = with_params(sub.add_parser("params", help="write a parameter file (defaults or --params)"))
+    p = with_params(sub.add_parser(
+        "params", help="write a parameter file (defaults or --params)",
+        description="Write the gripper parameters (the defaults, or --params with any --springs or "
+                    "--calibration applied) to a .json or .toml file. Every field, its unit, "
+                    "allowed range and source:",
+        epilog=parameter_help(), formatter_class=argparse.RawDescriptionHelpFormatter))
     p.add_argument("--out", required=True, metavar="FILE", help=".json or .toml")
     p.set_defaults(func=_cmd_params)
 
@@ -345,9 +357,9 @@ def build_parser() -> argparse.ArgumentParser:
                     "summary.csv and summary.json into --out. Rerunning into the same folder resumes. "
                     "Objects: " + ", ".join(DEFAULT_OBJECTS) + ", or mesh:PATH (STL/OBJ/PLY, metres)."))
     bn.add_argument("--objects", default=",".join(DEFAULT_OBJECTS), help="comma-separated names")
-    bn.add_argument("--trials", type=int, default=10, help="trials per object (default 10)")
+    bn.add_argument("--trials", type=int, default=DEFAULT_TRIALS, help="trials per object (default %(default)s)")
     bn.add_argument("--seed", type=int, default=0, help="base seed (default 0)")
-    bn.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    bn.add_argument("--workers", type=int, default=DEFAULT_WORKERS, help="local worker processes (default %(default)s)")
     bn.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786")
     bn.add_argument("--out", default="runs/bench", metavar="DIR", help="output folder (default runs/bench)")
     with_protocol(bn)
@@ -380,7 +392,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "plot per parameter and recommendations.md into --out. Rerunning resumes.")
     st.add_argument("file", metavar="FILE.toml")
     st.add_argument("--out", required=True, metavar="DIR")
-    st.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    st.add_argument("--workers", type=int, default=DEFAULT_WORKERS, help="local worker processes (default %(default)s)")
     st.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://127.0.0.1:8786")
     st.add_argument("--no-progress", action="store_true")
     st.set_defaults(func=_cmd_study)
@@ -442,6 +454,8 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    from gripper.sim.stability import SimulationUnstable  # after parsing: --help stays quick
+
     try:
         return args.func(args)
     except ValueError as e:

@@ -21,12 +21,12 @@ import math
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Self
 
+from gripper.core.fields import FieldSpec, Validated, check_fields, field_specs, param
 from gripper.core.resources import MODEL_DIR
 from gripper.core.servo import SERVO_PRESETS, ServoDatasheet, servo_datasheet
-
-DEG = math.pi / 180.0
+from gripper.core.units import DEG
 
 # paper 000, Table 2: torsion spring stiffness 1.9e-3 N·m/deg = 0.1089 N·m/rad, as printed. The
 # unit is suspect (see docs/consistency.md): read per radian it is 1.9e-3 N·m/rad.
@@ -42,39 +42,6 @@ SPRING_SETS = ("calibrated", "paper", "paper_per_radian")
 # Tip element's inertia about its proximal hinge [kg·m²] (default design: 16x16x18 mm of
 # 1120 kg/m³ silicone, less its cuts, ~3.6 g at ~13 mm), for HingeSprings.paper's damping.
 TIP_ELEMENT_INERTIA = 8.3e-7
-
-
-def _finite(name: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise ValueError(f"{name}: expected a number, got {value!r}")
-    if not math.isfinite(value):
-        raise ValueError(f"{name}: must be finite, got {value!r}")
-    return float(value)
-
-
-def _positive(name: str, value: Any) -> None:
-    if _finite(name, value) <= 0.0:
-        raise ValueError(f"{name}: must be > 0, got {value!r}")
-
-
-def _nonneg(name: str, value: Any) -> None:
-    if _finite(name, value) < 0.0:
-        raise ValueError(f"{name}: must be >= 0, got {value!r}")
-
-
-def check_between(name: str, value: Any, lo: float, hi: float, *, closed: bool = False) -> None:
-    v = _finite(name, value)
-    ok = lo <= v <= hi if closed else lo < v < hi
-    if not ok:
-        brackets = f"[{lo:g}, {hi:g}]" if closed else f"({lo:g}, {hi:g})"
-        raise ValueError(f"{name}: must be in {brackets}, got {value!r}")
-
-
-def _integer(name: str, value: Any, lo: int, hi: int) -> None:
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise ValueError(f"{name}: expected an integer in [{lo}, {hi}], got {value!r}")
-    if not lo <= value <= hi:
-        raise ValueError(f"{name}: must be an integer in [{lo}, {hi}], got {value!r}")
 
 
 def _committed_springs() -> tuple[tuple[float, ...], tuple[float, ...], tuple[float, ...]]:
@@ -99,14 +66,8 @@ _CALIBRATED = {"stiffness": CALIBRATED_STIFFNESS, "damping": CALIBRATED_DAMPING,
                "rest_angle_deg": CALIBRATED_REST_ANGLE_DEG}
 
 
-class _Replace:
-    def replace(self, **changes: Any):
-        """A copy with ``changes`` applied (``dataclasses.replace``)."""
-        return dataclasses.replace(self, **changes)
-
-
 @dataclass(frozen=True)
-class FingerGeometry(_Replace):
+class FingerGeometry(Validated):
     """Geometry of one finger: a silicone bar cut by triangular notches into elements.
 
     Finger frame: x along the finger from the palm to the tip, z from the back (bridge side,
@@ -139,15 +100,23 @@ class FingerGeometry(_Replace):
             Assumed 5°: the bridge and the closed back face resist extension stiffly.
     """
 
-    n_segments: int = 6
-    pitch: float = 0.016
-    width: float = 0.016
-    height: float = 0.018
-    cut_angle_deg: float = 45.0
-    bridge_thickness: float = 0.0019
-    hole_height: float = 0.012
-    hole_diameter: float = 0.006
-    extension_limit_deg: float = 5.0
+    SECTION = "finger"
+
+    n_segments: int = param(6, "-", ge=2, le=64, integer=True,
+                            source="paper 000 §III: six elements B1..B6, five spring hinges")
+    pitch: float = param(0.016, "m", gt=0, source="assumed: 96 mm fingers, about the paper's photographed fingers")
+    width: float = param(0.016, "m", gt=0, source="assumed")
+    height: float = param(0.018, "m", gt=0,
+                          source="assumed: room for the bridge, a 6 mm hole and 3 mm of wall")
+    cut_angle_deg: float = param(45.0, "deg", gt=0, lt=90, source="paper 000 §II: 45°")
+    bridge_thickness: float = param(
+        0.0019, "m", gt=0, source="root-find: the bridge at which the converged continuum body has "
+        "Table 2's spring read per radian (docs/consistency.md)")
+    hole_height: float = param(0.012, "m", gt=0,
+                               source="assumed: 10.1 mm above the bridge (brief: 8-10 mm), 11.05 mm lever arm")
+    hole_diameter: float = param(0.006, "m", gt=0, source="paper 000 §II: 6 mm")
+    extension_limit_deg: float = param(5.0, "deg", ge=0, le=90,
+                                       source="assumed: the bridge and closed back face resist extension")
 
     @property
     def n_hinges(self) -> int:
@@ -179,14 +148,7 @@ class FingerGeometry(_Replace):
         """Height of the hinge axes: the middle of the bridge, its neutral axis [m]."""
         return 0.5 * self.bridge_thickness
 
-    def validate(self) -> FingerGeometry:
-        _integer("finger.n_segments", self.n_segments, 2, 64)
-        for name in ("pitch", "width", "height", "bridge_thickness", "hole_height",
-                     "hole_diameter"):
-            _positive(f"finger.{name}", getattr(self, name))
-        check_between("finger.cut_angle_deg", self.cut_angle_deg, 0.0, 90.0)
-        check_between("finger.extension_limit_deg", self.extension_limit_deg, 0.0, 90.0,
-                 closed=True)
+    def check(self) -> None:
         if self.bridge_thickness >= self.height:
             raise ValueError(
                 f"finger.bridge_thickness: must be < finger.height ({self.height:g} m), "
@@ -202,11 +164,10 @@ class FingerGeometry(_Replace):
                 f"finger.cut_angle_deg: cuts of {self.cut_angle_deg:g}° would meet at the "
                 f"grasping face; need 2·(height-bridge)·tan(angle/2) < pitch "
                 f"({self.pitch:g} m)")
-        return self
 
 
 @dataclass(frozen=True)
-class Material(_Replace):
+class Material(Validated):
     """Silicone of the finger body.
 
     Attributes:
@@ -222,30 +183,23 @@ class Material(_Replace):
             soft silicone on dry plastic, paper and latex is typically 0.8-1.5.
     """
 
-    density: float = 1120.0
-    youngs_modulus: float = 0.44e6
-    poisson_ratio: float = 0.48
-    shore_a: float = 20.0
-    tensile_strength: float = 4.0e6
-    elongation_at_break: float = 5.0
-    yeoh_c10: float = 0.11596e6
-    yeoh_c20: float = 0.0168e6
-    yeoh_c30: float = -0.000319e6
-    friction: float = 1.0
+    SECTION = "material"
 
-    def validate(self) -> Material:
-        for name in ("density", "youngs_modulus", "tensile_strength", "elongation_at_break",
-                     "friction"):
-            _positive(f"material.{name}", getattr(self, name))
-        check_between("material.poisson_ratio", self.poisson_ratio, -1.0, 0.5)
-        check_between("material.shore_a", self.shore_a, 0.0, 100.0, closed=True)
-        for name in ("yeoh_c10", "yeoh_c20", "yeoh_c30"):
-            _finite(f"material.{name}", getattr(self, name))
-        return self
+    density: float = param(1120.0, "kg/m³", gt=0, source="paper 000 Table 1: 1.12 g/cm³")
+    youngs_modulus: float = param(0.44e6, "Pa", gt=0, source="paper 000 Table 2: 0.44 MPa")
+    poisson_ratio: float = param(0.48, "-", gt=-1, lt=0.5, source="paper 000 Table 2: 0.48")
+    shore_a: float = param(20.0, "Shore A", ge=0, le=100, source="paper 000 Table 1: 20 ± 2 A")
+    tensile_strength: float = param(4.0e6, "Pa", gt=0, source="paper 000 Table 1: 4 MPa")
+    elongation_at_break: float = param(5.0, "-", gt=0, source="paper 000 Table 1: >= 500 %")
+    yeoh_c10: float = param(0.11596e6, "Pa", source="paper 001 §2.3: 0.11596 MPa (RTV 230)")
+    yeoh_c20: float = param(0.0168e6, "Pa", source="paper 001 §2.3: 0.0168 MPa")
+    yeoh_c30: float = param(-0.000319e6, "Pa", source="paper 001 §2.3: -0.000319 MPa")
+    friction: float = param(1.0, "-", gt=0,
+                            source="assumed: soft silicone on dry plastic, paper, latex is 0.8-1.5")
 
 
 @dataclass(frozen=True)
-class HingeSprings(_Replace):
+class HingeSprings(Validated):
     """Torsion springs at the bridges, one value per hinge or one value for all.
 
     The defaults are the committed calibration of the default design
@@ -277,11 +231,17 @@ class HingeSprings(_Replace):
             estimate's order; set it from a measurement.
     """
 
-    stiffness: tuple[float, ...] = CALIBRATED_STIFFNESS
-    damping: tuple[float, ...] = CALIBRATED_DAMPING
-    rest_angle_deg: tuple[float, ...] = CALIBRATED_REST_ANGLE_DEG
-    closure: str = "teeth"
-    closure_stiffness: float = 1.0
+    SECTION = "springs"
+
+    stiffness: tuple[float, ...] = param(CALIBRATED_STIFFNESS, "N·m/rad", gt=0, numbers=True,
+                                         source="fitted: the committed calibration")
+    damping: tuple[float, ...] = param(CALIBRATED_DAMPING, "N·m·s/rad", ge=0, numbers=True,
+                                       source="fitted: the committed calibration")
+    rest_angle_deg: tuple[float, ...] = param(CALIBRATED_REST_ANGLE_DEG, "deg", gt=-90, lt=90,
+                                              numbers=True, source="fitted: the committed calibration")
+    closure: str = param("teeth", "-", choices=CLOSURE_MODELS, source="gripper.model.closure")
+    closure_stiffness: float = param(1.0, "N·m/rad", gt=0,
+                                     source="assumed: a placeholder of the teeth estimate's order")
 
     @classmethod
     def paper(cls, reading: str = "per_degree", **changes: Any) -> HingeSprings:
@@ -318,29 +278,20 @@ class HingeSprings(_Replace):
         return tuple(out)
 
     def validate(self, n_hinges: int | None = None) -> HingeSprings:
-        for name, check in (("stiffness", _positive), ("damping", _nonneg),
-                            ("rest_angle_deg", _finite)):
+        """Check every field; with ``n_hinges``, also that each list has 1 or ``n_hinges``
+        values (the committed calibration's lists are broadcast, see :meth:`per_hinge`)."""
+        check_fields(self, self.SECTION)
+        for name in ("stiffness", "damping", "rest_angle_deg"):
             values = getattr(self, name)
-            if not isinstance(values, tuple | list) or len(values) == 0:
-                raise ValueError(f"springs.{name}: expected a non-empty list of numbers, "
-                                 f"got {values!r}")
             if (n_hinges is not None and len(values) not in (1, n_hinges)
                     and tuple(values) != _CALIBRATED[name]):
                 raise ValueError(f"springs.{name}: expected 1 or {n_hinges} values (one per "
                                  f"hinge), got {len(values)}")
-            for i, v in enumerate(values):
-                check(f"springs.{name}[{i}]", v)
-        for i, v in enumerate(self.rest_angle_deg):
-            check_between(f"springs.rest_angle_deg[{i}]", v, -90.0, 90.0)
-        if self.closure not in CLOSURE_MODELS:
-            raise ValueError(f"springs.closure: must be one of {', '.join(CLOSURE_MODELS)}, "
-                             f"got {self.closure!r}")
-        _positive("springs.closure_stiffness", self.closure_stiffness)
         return self
 
 
 @dataclass(frozen=True)
-class Cable(_Replace):
+class Cable(Validated):
     """The driving cable (paper 000 §II: polyethylene fibre, Ø 0.5 mm, fixed at the tip).
 
     Attributes:
@@ -351,24 +302,21 @@ class Cable(_Replace):
             runs loose in 6 mm holes (paper 000 §II).
     """
 
-    diameter: float = 0.5e-3
-    youngs_modulus: float = 50e9
-    friction_loss: float = 0.0
+    SECTION = "cable"
+
+    diameter: float = param(0.5e-3, "m", gt=0, source="paper 000 §II: Ø 0.5 mm")
+    youngs_modulus: float = param(50e9, "Pa", gt=0,
+                                  source="assumed: UHMW-PE fibre is 100-120 GPa, a braid about half")
+    friction_loss: float = param(0.0, "N", ge=0, source="assumed: a 0.5 mm cable loose in 6 mm holes")
 
     @property
     def axial_stiffness(self) -> float:
         """EA [N]: force per unit strain of the cable."""
         return self.youngs_modulus * math.pi * (0.5 * self.diameter) ** 2
 
-    def validate(self) -> Cable:
-        _positive("cable.diameter", self.diameter)
-        _positive("cable.youngs_modulus", self.youngs_modulus)
-        _nonneg("cable.friction_loss", self.friction_loss)
-        return self
-
 
 @dataclass(frozen=True)
-class ServoParams(_Replace):
+class ServoParams(Validated):
     """The servo that reels each cable in: a datasheet preset, a spool and controller tuning.
 
     Attributes:
@@ -382,11 +330,16 @@ class ServoParams(_Replace):
             set-point [m/s]; 0 means the servo's no-load speed times the spool radius.
     """
 
-    preset: str = "hobby_6v"
-    spool_radius: float = 0.020
-    saturation_error_deg: float = 0.6
-    damping_ratio: float = 1.0
-    contraction_speed: float = 0.0
+    SECTION = "servo"
+
+    preset: str = param("hobby_6v", "-", choices=tuple(SERVO_PRESETS), source="gripper.core.servo datasheets")
+    spool_radius: float = param(0.020, "m", gt=0,
+                                source="assumed: 180° of travel reels in 63 mm, enough to close every cut")
+    saturation_error_deg: float = param(0.6, "deg", gt=0, lt=90,
+                                        source="assumed: about a hobby servo's dead band")
+    damping_ratio: float = param(1.0, "-", gt=0, source="assumed: a critically damped position loop")
+    contraction_speed: float = param(0.0, "m/s", ge=0,
+                                     source="0: the servo's no-load speed times the spool radius")
 
     @property
     def datasheet(self) -> ServoDatasheet:
@@ -403,18 +356,9 @@ class ServoParams(_Replace):
         v = self.contraction_speed or self.datasheet.no_load_speed * self.spool_radius
         return v / self.spool_radius
 
-    def validate(self) -> ServoParams:
-        if not isinstance(self.preset, str) or self.preset not in SERVO_PRESETS:
-            servo_datasheet(str(self.preset))  # raises with the allowed names
-        _positive("servo.spool_radius", self.spool_radius)
-        check_between("servo.saturation_error_deg", self.saturation_error_deg, 0.0, 90.0)
-        _positive("servo.damping_ratio", self.damping_ratio)
-        _nonneg("servo.contraction_speed", self.contraction_speed)
-        return self
-
 
 @dataclass(frozen=True)
-class GripperLayout(_Replace):
+class GripperLayout(Validated):
     """How the fingers sit on the palm.
 
     Attributes:
@@ -429,23 +373,19 @@ class GripperLayout(_Replace):
             0.35 kg: four 55 g servos plus a printed hub.
     """
 
-    n_fingers: int = 4
-    palm_radius: float = 0.040
-    palm_thickness: float = 0.020
-    mount_tilt_deg: float = 0.0
-    palm_mass: float = 0.35
+    SECTION = "layout"
 
-    def validate(self) -> GripperLayout:
-        _integer("layout.n_fingers", self.n_fingers, 1, 12)
-        _positive("layout.palm_radius", self.palm_radius)
-        _positive("layout.palm_thickness", self.palm_thickness)
-        check_between("layout.mount_tilt_deg", self.mount_tilt_deg, -45.0, 45.0, closed=True)
-        _positive("layout.palm_mass", self.palm_mass)
-        return self
+    n_fingers: int = param(4, "-", ge=1, le=12, integer=True, source="paper 000 §V: four fingers")
+    palm_radius: float = param(0.040, "m", gt=0,
+                               source="assumed: an 80 mm opening takes every object of the grasp set")
+    palm_thickness: float = param(0.020, "m", gt=0, source="assumed: a 3D-printed hub")
+    mount_tilt_deg: float = param(0.0, "deg", ge=-45, le=45,
+                                  source="assumed: fingers hang straight, as in the paper's photograph")
+    palm_mass: float = param(0.35, "kg", gt=0, source="assumed: four 55 g servos and a printed hub")
 
 
 @dataclass(frozen=True)
-class LiftAxis(_Replace):
+class LiftAxis(Validated):
     """The stage that carries the palm: a vertical lift axis, optional x/y axes.
 
     Each axis is a position-controlled linear stage (MuJoCo ``position`` actuator).
@@ -461,28 +401,23 @@ class LiftAxis(_Replace):
             96 mm fingers clear a 100 mm object with room to approach.
     """
 
-    z_travel: float = 0.25
-    xy_enabled: bool = True
-    xy_travel: float = 0.05
-    stiffness: float = 4000.0
-    damping_ratio: float = 1.0
-    max_force: float = 60.0
-    home_height: float = 0.25
+    SECTION = "lift"
 
-    def validate(self) -> LiftAxis:
-        for name in ("z_travel", "xy_travel", "stiffness", "damping_ratio", "max_force",
-                     "home_height"):
-            _positive(f"lift.{name}", getattr(self, name))
-        if not isinstance(self.xy_enabled, bool):
-            raise ValueError(f"lift.xy_enabled: expected true or false, got {self.xy_enabled!r}")
-        return self
+    z_travel: float = param(0.25, "m", gt=0, source="assumed: ±0.25 m")
+    xy_enabled: bool = param(True, "-", source="needed to shake the object")
+    xy_travel: float = param(0.05, "m", gt=0, source="assumed: ±0.05 m")
+    stiffness: float = param(4000.0, "N/m", gt=0, source="assumed: 1 mm of error per 4 N")
+    damping_ratio: float = param(1.0, "-", gt=0, source="assumed: critically damped with the palm mass")
+    max_force: float = param(60.0, "N", gt=0, source="assumed: a small linear stage")
+    home_height: float = param(0.25, "m", gt=0,
+                               source="assumed: 96 mm fingers clear a 100 mm object with room to approach")
 
 
 INTEGRATORS = ("euler", "implicit", "implicitfast", "rk4")
 
 
 @dataclass(frozen=True)
-class SimOptions(_Replace):
+class SimOptions(Validated):
     """Simulation settings of the gripper model.
 
     Attributes:
@@ -491,17 +426,11 @@ class SimOptions(_Replace):
         gravity: gravitational acceleration along -z [m/s²].
     """
 
-    timestep: float = 1.0e-3
-    integrator: str = "implicitfast"
-    gravity: float = 9.81
+    SECTION = "sim"
 
-    def validate(self) -> SimOptions:
-        check_between("sim.timestep", self.timestep, 0.0, 0.01, closed=False)
-        if self.integrator not in INTEGRATORS:
-            raise ValueError(f"sim.integrator: must be one of {', '.join(INTEGRATORS)}, "
-                             f"got {self.integrator!r}")
-        _nonneg("sim.gravity", self.gravity)
-        return self
+    timestep: float = param(1.0e-3, "s", gt=0, lt=0.01, source="the model README's convergence check")
+    integrator: str = param("implicitfast", "-", choices=INTEGRATORS, source="MuJoCo's integrators")
+    gravity: float = param(9.81, "m/s²", ge=0, source="standard gravity")
 
 
 _SECTIONS: dict[str, type] = {
@@ -517,7 +446,7 @@ _SECTIONS: dict[str, type] = {
 
 
 @dataclass(frozen=True)
-class GripperParams(_Replace):
+class GripperParams(Validated):
     """All parameters of a gripper: the single source of truth for every model built.
 
     Example:
@@ -534,7 +463,7 @@ class GripperParams(_Replace):
     lift: LiftAxis = field(default_factory=LiftAxis)
     sim: SimOptions = field(default_factory=SimOptions)
 
-    def validate(self) -> GripperParams:
+    def validate(self) -> Self:
         """Check every field; return ``self``.
 
         Raises:
@@ -647,4 +576,23 @@ def _to_toml(data: dict[str, dict[str, Any]]) -> str:
         lines.append(f"[{section}]")
         lines += [f"{k} = {_toml_value(v)}" for k, v in values.items()]
         lines.append("")
+    return "\n".join(lines)
+
+
+def parameter_rows(params: GripperParams | None = None) -> list[tuple[str, str, Any, FieldSpec]]:
+    """(section, field, value, spec) of every parameter, in file order: what the model README's
+    table and ``gripper params --help`` list."""
+    p = params or GripperParams()
+    return [(section, name, getattr(getattr(p, section), name), spec)
+            for section, klass in _SECTIONS.items() for name, spec in field_specs(klass).items()]
+
+
+def parameter_help() -> str:
+    """The parameter fields as command-line help text: name, default, unit, allowed, source."""
+    lines = []
+    for section, name, value, spec in parameter_rows():
+        shown = list(value) if isinstance(value, tuple) else value
+        if isinstance(shown, list) and len(shown) > 1:
+            shown = "[" + ", ".join(f"{v:.3g}" for v in shown) + "]"
+        lines.append(f"  {section}.{name} = {shown} [{spec.unit}], {spec.allowed()}; {spec.source}")
     return "\n".join(lines)

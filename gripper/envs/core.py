@@ -14,7 +14,6 @@ Example:
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 from dataclasses import dataclass, field
@@ -22,7 +21,9 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
+from gripper.core.fields import Validated
 from gripper.core.params import GripperParams
+from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.experiments.protocol import TrialNoise
 from gripper.experiments.trial import sample_placement
 from gripper.model.names import finger_name
@@ -34,7 +35,6 @@ from gripper.sim.stepping import STATE_SPEC
 CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
 
 # Physics step of the environments [s]: the grasp trials' 2 ms (see GraspProtocol.timestep).
-ENV_TIMESTEP = 0.002
 # Palm-face height at the start of an episode, above the object's top plus the finger length [m]:
 # 10 mm keeps the straight fingertips clear of the object's top at any sampled offset.
 START_CLEARANCE = 0.010
@@ -59,7 +59,7 @@ DEFAULT_REWARD_WEIGHTS = {
 
 
 @dataclass(frozen=True)
-class EnvConfig:
+class EnvConfig(Validated):
     """Everything that defines the environment, validated once (SI units).
 
     See :class:`gripper.envs.grasp_env.SoftGripperGraspEnv` for the meaning of each field.
@@ -123,15 +123,12 @@ class EnvConfig:
 
     @property
     def control_period(self) -> float:
-        return self.frame_skip * ENV_TIMESTEP
+        return self.frame_skip * TRIAL_TIMESTEP
 
     @functools.cached_property
     def weights(self) -> dict:
         """The reward weights in effect (defaults overridden by ``reward_weights``)."""
         return {**DEFAULT_REWARD_WEIGHTS, **self.reward_weights}
-
-    def replace(self, **changes) -> EnvConfig:
-        return dataclasses.replace(self, **changes).validate()
 
 
 def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
@@ -152,7 +149,7 @@ class Scene:
     """One compiled scene (gripper + one object) and the indices the environment reads."""
 
     def __init__(self, cfg: EnvConfig, obj: GraspObject, place: Placement):
-        p = cfg.params.replace(sim=cfg.params.sim.replace(timestep=ENV_TIMESTEP))
+        p = cfg.params.replace(sim=cfg.params.sim.replace(timestep=TRIAL_TIMESTEP))
         self.cfg, self.obj, self.params = cfg, obj, p
         self.model = build_grasp_scene(p, obj, place)
         m = self.model
@@ -383,6 +380,7 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
 
 def unstable_result(ep: EpisodeState, err: str) -> tuple[np.ndarray, float, bool, dict]:
     """A diverged simulation ends the episode: last finite observation, zero reward, the reason."""
+    assert ep.last_obs is not None, "an episode observes on reset"
     return (ep.last_obs.copy(), 0.0, True,
             {"is_success": False, "object": ep.scene.obj.name, "unstable": True, "error": err})
 

@@ -58,13 +58,14 @@ class SoftGripperGraspVectorEnv(VectorEnv):
         self.observation_structure, self.single_observation_space, self.single_action_space = (
             make_spaces(self.config))
         self.observation_space = batch_space(self.single_observation_space, num_envs)
+        self._obs_shape: tuple[int, ...] = self.single_observation_space.shape or ()
         self.action_space = batch_space(self.single_action_space, num_envs)
         # one scene set per slot: rigid scenes carry per-episode mass and friction
         self._scenes = [SceneSet(self.config) for _ in range(num_envs)]
         n = nthread if nthread is not None else min(num_envs, os.cpu_count() or 1)
         self._stepper = BatchStepper(nthread=n if n > 1 else 0)
         self._eps: list = [None] * num_envs
-        self._rngs = [None] * num_envs
+        self._rngs: list[np.random.Generator | None] = [None] * num_envs
         self._autoreset = np.zeros(num_envs, dtype=bool)
         self._renderer = None
 
@@ -76,7 +77,7 @@ class SoftGripperGraspVectorEnv(VectorEnv):
                 raise ValueError(f"seed: expected {self.num_envs} seeds, got {len(seed)}")
             seeds = list(seed)
         mask = None if options is None else options.get("reset_mask")
-        obs = np.zeros((self.num_envs,) + self.single_observation_space.shape)
+        obs = np.zeros((self.num_envs, *self._obs_shape))
         infos: dict = {}
         for i in range(self.num_envs):
             if mask is not None and not mask[i]:
@@ -90,7 +91,9 @@ class SoftGripperGraspVectorEnv(VectorEnv):
         return obs, infos
 
     def _reset_slot(self, i: int):
-        ep = start_episode(self._scenes[i], self._rngs[i])
+        rng = self._rngs[i]
+        assert rng is not None, "reset seeds every slot's generator first"
+        ep = start_episode(self._scenes[i], rng)
         ep.last_obs = observe(ep, ep.data.sensordata)
         self._eps[i] = ep
         return ep.last_obs.copy(), {"object": ep.scene.obj.name, "is_success": False,
@@ -101,7 +104,7 @@ class SoftGripperGraspVectorEnv(VectorEnv):
         if any(ep is None for ep in self._eps):
             raise RuntimeError("step: call reset() first")
         n = self.num_envs
-        obs = np.zeros((n,) + self.single_observation_space.shape)
+        obs = np.zeros((n, *self._obs_shape))
         rewards = np.zeros(n)
         terminated = np.zeros(n, dtype=bool)
         truncated = np.zeros(n, dtype=bool)

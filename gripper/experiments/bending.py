@@ -22,17 +22,18 @@ from dataclasses import asdict, dataclass, field
 import mujoco
 import numpy as np
 
+from gripper.core.fields import Validated
 from gripper.core.params import GripperParams
+from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
 from gripper.model.builders import build_bending_spec
 from gripper.model.names import FingerNames
 from gripper.sim.stability import SimulationUnstable, check_stable
 
-PAPER_STEP = 5.0e-4  # s, paper 000 §IV (ADAMS run: 2 s at 5e-4 s)
 PAPER_DURATION = 2.0  # s, paper 000 §IV
 
 
 @dataclass(frozen=True)
-class BendingConfig:
+class BendingConfig(Validated):
     """Settings of a bending test.
 
     Attributes:
@@ -54,7 +55,7 @@ class BendingConfig:
 
     r_max: float = 0.45
     duration: float = PAPER_DURATION
-    timestep: float = PAPER_STEP
+    timestep: float = PAPER_BENDING_TIMESTEP
     mode: str = "dynamic"
     n_points: int = 101
     settle_tol: float = 1.0e-3

@@ -28,6 +28,7 @@ import mujoco
 import numpy as np
 
 from gripper.core.params import GripperParams
+from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.model.builders import build_scene_spec
 from gripper.objects.library import GraspObject, Placement, add_object, get_object
 from gripper.sim.canonical import apply_canonical_constants
@@ -40,7 +41,6 @@ CRUSH_GAP = 0.005
 # Time for the object to settle on the floor before the plate moves [s] (as GraspProtocol).
 CRUSH_SETTLE_S = 0.3
 PLATE_HALF = (0.060, 0.060, 0.005)  # m: wider than every library object
-STEP = 0.002  # s, the grasp trials' step (GraspProtocol.timestep), discrete integrator
 
 
 def crush_test(obj: str | GraspObject, depth: float, *, speed: float = 0.02,
@@ -65,7 +65,7 @@ def crush_test(obj: str | GraspObject, depth: float, *, speed: float = 0.02,
     if not (isinstance(hold_s, int | float) and math.isfinite(hold_s) and 0.0 <= hold_s <= 10.0):
         raise ValueError(f"crush.hold_s: must be in [0, 10] s, got {hold_s!r}")
     p = (params or GripperParams()).validate()
-    p = p.replace(sim=p.sim.replace(timestep=STEP)).validate()
+    p = p.replace(sim=p.sim.replace(timestep=TRIAL_TIMESTEP)).validate()
     spec = build_scene_spec(p, with_object=False)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
     add_object(spec, obj, Placement())
@@ -87,7 +87,7 @@ def crush_test(obj: str | GraspObject, depth: float, *, speed: float = 0.02,
     force = np.zeros(6)
     for duration, offset in schedule:
         t0 = d.time
-        for _ in range(int(round(duration / STEP))):
+        for _ in range(int(round(duration / TRIAL_TIMESTEP))):
             d.mocap_pos[0, 2] = z_top + offset(d.time - t0)
             mujoco.mj_step(m, d)
             f = 0.0

@@ -14,30 +14,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from gripper.core.params import GripperParams
+from gripper.core.params import GripperParams, parameter_rows
 from gripper.core.resources import MODEL_DIR
 from gripper.model.builders import build_gripper_spec, build_scene_spec
 from gripper.model.closure import teeth_closure_stiffness
 
 REPO_MODELS = MODEL_DIR
 START, END = "<!-- params:start -->", "<!-- params:end -->"
-
-_UNITS = {
-    "n_segments": "-", "pitch": "m", "width": "m", "height": "m", "cut_angle_deg": "deg",
-    "bridge_thickness": "m", "hole_height": "m", "hole_diameter": "m",
-    "extension_limit_deg": "deg", "density": "kg/m³", "youngs_modulus": "Pa",
-    "poisson_ratio": "-", "shore_a": "Shore A", "tensile_strength": "Pa",
-    "elongation_at_break": "-", "yeoh_c10": "Pa", "yeoh_c20": "Pa", "yeoh_c30": "Pa",
-    "friction": "-", "stiffness": "N·m/rad", "damping": "N·m·s/rad",
-    "rest_angle_deg": "deg", "diameter": "m", "friction_loss": "N", "preset": "-",
-    "spool_radius": "m", "saturation_error_deg": "deg", "damping_ratio": "-",
-    "contraction_speed": "m/s", "n_fingers": "-", "palm_radius": "m", "palm_thickness": "m",
-    "mount_tilt_deg": "deg", "palm_mass": "kg", "z_travel": "m", "xy_enabled": "-",
-    "xy_travel": "m", "max_force": "N", "home_height": "m", "timestep": "s",
-    "integrator": "-", "gravity": "m/s²", "closure": "-", "closure_stiffness": "N·m/rad",
-}
-_UNIT_OVERRIDES = {("lift", "stiffness"): "N/m"}  # same field name, other section's unit
-
 
 def generate_model_files(params: GripperParams | None = None) -> dict[str, str]:
     """The XML texts, by file name, generated from ``params`` (defaults if None)."""
@@ -49,13 +32,13 @@ def generate_model_files(params: GripperParams | None = None) -> dict[str, str]:
 
 
 def parameter_table(params: GripperParams | None = None) -> str:
-    """Markdown table of every parameter with its value and unit."""
+    """Markdown table of every parameter: value, unit, allowed range and source, all from the
+    fields' metadata (:func:`gripper.core.params.parameter_rows`)."""
     p = params or GripperParams()
-    lines = ["| section | field | value | unit |", "|---|---|---|---|"]
-    for section, values in p.to_dict().items():
-        for key, value in values.items():
-            unit = _UNIT_OVERRIDES.get((section, key), _UNITS.get(key, "-"))
-            lines.append(f"| {section} | {key} | {value} | {unit} |")
+    lines = ["| section | field | value | unit | allowed | source |", "|---|---|---|---|---|---|"]
+    for section, key, value, spec in parameter_rows(p):
+        shown = list(value) if isinstance(value, tuple) else value
+        lines.append(f"| {section} | {key} | {shown} | {spec.unit} | {spec.allowed()} | {spec.source} |")
     derived = [
         ("finger", "closure_angle_deg", f"{p.finger.closure_angle_deg:.2f}", "deg"),
         ("springs", "closed-cut stiffness (teeth estimate)",
@@ -64,7 +47,7 @@ def parameter_table(params: GripperParams | None = None) -> str:
         ("cable", "axial_stiffness (EA)", f"{p.cable.axial_stiffness:.4g}", "N"),
         ("servo", "max_cable_tension", f"{p.servo.max_cable_tension:.4g}", "N"),
     ]
-    lines += [f"| {s} (derived) | {k} | {v} | {u} |" for s, k, v, u in derived]
+    lines += [f"| {s} (derived) | {k} | {v} | {u} | | |" for s, k, v, u in derived]
     return "\n".join(lines)
 
 

@@ -31,6 +31,8 @@ from pathlib import Path
 
 import mujoco
 
+from gripper.core.fields import Validated
+
 OBJECT_BODY = "object"
 CONTENTS_BODY = "object_contents"
 
@@ -40,7 +42,7 @@ DROP_GAP = 0.001
 
 
 @dataclass(frozen=True)
-class GraspObject:
+class GraspObject(Validated):
     """One object of the library (SI units).
 
     Attributes:
@@ -92,9 +94,6 @@ class GraspObject:
     @property
     def is_flex(self) -> bool:
         return self.kind in ("balloon", "paper_box", "bag")
-
-    def replace(self, **changes) -> GraspObject:
-        return dataclasses.replace(self, **changes).validate()
 
     def validate(self) -> GraspObject:
         for i, s in enumerate(self.size):
@@ -273,7 +272,8 @@ def mesh_object(path: str | Path, *, mass: float | None = None, friction: float 
     """
     mesh = load_mesh(path)
     lo, hi = mesh.bounds
-    half = tuple(float(v) for v in 0.5 * (hi - lo))
+    hx, hy, hz = (float(v) for v in 0.5 * (hi - lo))
+    half = (hx, hy, hz)
     m = float(mass) if mass is not None else DEFAULT_MESH_DENSITY * float(mesh.volume)
     obj = GraspObject(name=f"mesh:{path}", kind="mesh", size=half, mass=m, friction=friction,
                       yaw_symmetric=False, close_command=close_command, damage_limit=200.0,

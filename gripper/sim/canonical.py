@@ -31,6 +31,7 @@ import subprocess
 import sys
 import tempfile
 from pathlib import Path
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -92,8 +93,10 @@ def apply_canonical_constants(m: mujoco.MjModel, obj: GraspObject, place: Placem
 
 def _main(argv: list[str]) -> None:
     """Child process: compile the object described by argv[0] (JSON) alone, save to argv[1]."""
-    obj = GraspObject(**{k: tuple(v) if isinstance(v, list) else v for k, v in json.loads(argv[0]).items()})
-    np.savez(argv[1], **_compile_alone(obj.validate()))
+    fields: dict[str, Any] = {k: tuple(v) if isinstance(v, list) else v for k, v in json.loads(argv[0]).items()}
+    obj = GraspObject(**fields)
+    arrays: dict[str, Any] = _compile_alone(obj.validate())
+    np.savez(argv[1], **arrays)
 
 
 if __name__ == "__main__":

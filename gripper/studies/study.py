@@ -59,14 +59,18 @@ import re
 import time
 import tomllib
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
+from gripper.bench.defaults import DEFAULT_WORKERS
 from gripper.core.params import GripperParams
+from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
 
 DESIGNS = ("one_at_a_time", "factorial", "latin_hypercube")
-RESPONSES = {
+RESPONSES: dict[str, dict[str, type]] = {
     "bending": {"r_max": float, "duration": float},
     "tension_for_angle": {"angle_deg": float},
     "blocked_force": {"r": float},
@@ -392,7 +396,7 @@ def blocked_tip_force(p: GripperParams, r: float) -> float:
     from gripper.model.names import FingerNames
     from gripper.sim.stability import check_stable
 
-    spec = build_bending_spec(p, timestep=5e-4)
+    spec = build_bending_spec(p, timestep=PAPER_BENDING_TIMESTEP)
     names = FingerNames("f0", p.finger.n_segments)
     m0 = spec.compile()
     d0 = mujoco.MjData(m0)
@@ -420,13 +424,13 @@ def blocked_tip_force(p: GripperParams, r: float) -> float:
 def run_point(study: Study, index: int, changes: dict) -> dict:
     """Every response of one design point; errors are recorded, not raised."""
     t0 = time.perf_counter()
-    rec = {"point": index, "changes": changes, "status": "ok", "metrics": {}, "curves": {}}
+    met: dict[str, float | None] = {}
+    rec: dict[str, Any] = {"point": index, "changes": changes, "status": "ok", "metrics": met, "curves": {}}
     try:
         p, reasons = apply_point(study.base, changes)
         rec["calibrated"] = not reasons
         rec["calibration_note"] = "; ".join(reasons)
         resp = study.responses
-        met = rec["metrics"]
         if "bending" in resp or "tension_for_angle" in resp:
             res = _bending(p, resp.get("bending", {}))
             rec["curves"] = {"r": res.r_command.tolist(), "bending_angle_deg": res.bending_angle_deg.tolist(),
@@ -459,7 +463,7 @@ def run_point(study: Study, index: int, changes: dict) -> dict:
 
 # --- running, tables, plots ------------------------------------------------------------------
 
-def run_study(study: Study, out: str | Path, *, workers: int = 1, scheduler: str | None = None,
+def run_study(study: Study, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
               progress: bool = True) -> list[dict]:
     """Run (or resume) the study into ``out``; write the table, plots and recommendations."""
     from gripper.bench.execution import claim_run_dir, read_jsonl, run_ordered
@@ -562,10 +566,14 @@ def write_plots(records: list[dict], study: Study, out: Path) -> list[Path]:
         fig.suptitle(f"{study.name}: {key}")
         fig.tight_layout()
         path = out / f"plot_{key.replace('.', '_')}.png"
-        write_atomic(path, lambda tmp, fig=fig: fig.savefig(tmp, dpi=90, format="png"))
+        write_atomic(path, partial(_save_png, fig))
         plt.close(fig)
         files.append(path)
     return files
+
+
+def _save_png(fig: Any, tmp: Path) -> None:
+    fig.savefig(tmp, dpi=90, format="png")
 
 
 def recommendations(records: list[dict], study: Study) -> str:
