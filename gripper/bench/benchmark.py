@@ -25,11 +25,13 @@ Example:
 from __future__ import annotations
 
 import csv
+import dataclasses
 import json
 import math
 import os
 import statistics
 import time
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -38,10 +40,11 @@ import numpy as np
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
 from gripper.bench.execution import claim_run_dir, read_jsonl, run_ordered
 from gripper.core.fields import Validated
-from gripper.core.hashing import config_hash
+from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
+from gripper.experiments.record import TrialRecord
 from gripper.experiments.trial import run_trial
 from gripper.objects.library import DEFAULT_OBJECTS, get_object
 
@@ -90,7 +93,7 @@ class BenchConfig(Validated):
                 "versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")}}
 
     def hash(self) -> str:
-        return config_hash(self.identity())
+        return stable_hash([self.identity()])
 
     def jobs(self) -> list[tuple[str, int]]:
         """(object, index) in the order records are written."""
@@ -99,17 +102,17 @@ class BenchConfig(Validated):
 
 def _run_one(cfg: BenchConfig, obj: str, index: int) -> dict:
     rec = run_trial(obj, cfg.seed, index, params=cfg.params, protocol=cfg.protocol, noise=cfg.noise)
-    rec["run_config_hash"] = cfg.hash()
-    return rec
+    return dataclasses.replace(rec, run_config_hash=cfg.hash()).to_dict()
 
 
-def _trial_key(rec: dict) -> tuple[str, int]:
+def _trial_key(rec: Mapping) -> tuple[str, int]:
     return rec["object"], int(rec["index"])
 
 
-def read_trials(path: Path) -> list[dict]:
-    """Complete records of ``trials.jsonl`` (a torn last line is cut off)."""
-    return read_jsonl(path)
+def read_trials(path: Path) -> list[TrialRecord]:
+    """Complete records of ``trials.jsonl`` (a torn last line is cut off), each checked
+    against the record's schema (a bad one is a ValueError naming the file and the record)."""
+    return [TrialRecord.from_dict(r, where=f"{path}: record {i + 1}") for i, r in enumerate(read_jsonl(path))]
 
 
 def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
@@ -125,7 +128,7 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
     out = Path(out)
     claim_run_dir(out, "config.json", "config", cfg.hash(), cfg.identity(), "a run with another configuration")
     tpath = out / "trials.jsonl"
-    done = {_trial_key(r): r for r in read_trials(tpath)}
+    done: dict[tuple[str, int], Mapping] = {_trial_key(r): r for r in read_trials(tpath)}
     todo = [j for j in cfg.jobs() if j not in done]
     t0 = time.perf_counter()
     run_ordered([(cfg, obj, i) for obj, i in todo], _run_one, tpath, workers=workers, scheduler=scheduler,
@@ -137,7 +140,7 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
     return summary
 
 
-def summarize(records: list[dict], cfg: BenchConfig, wall_time_s: float = 0.0) -> dict:
+def summarize(records: Sequence[Mapping], cfg: BenchConfig, wall_time_s: float = 0.0) -> dict:
     """Per-object statistics of ``records`` (see the module docstring)."""
     per = {}
     for obj in cfg.objects:

@@ -29,7 +29,6 @@ Example:
 
 from __future__ import annotations
 
-import hashlib
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -37,6 +36,7 @@ from pathlib import Path
 import mujoco
 
 from gripper.core.atomic import write_atomic
+from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 
 SCHEMA = "gripper.calibration/1"
@@ -50,8 +50,7 @@ class CalibrationMismatch(ValueError):
 def design_hash(p: GripperParams) -> str:
     """Hash of what the body's bending depends on: finger geometry, material, cable [hex]."""
     d = p.to_dict()
-    blob = json.dumps({k: d[k] for k in ("finger", "material", "cable")}, sort_keys=True)
-    return hashlib.sha256(blob.encode()).hexdigest()[:16]
+    return stable_hash({k: d[k] for k in ("finger", "material", "cable")})
 
 
 @dataclass(frozen=True)

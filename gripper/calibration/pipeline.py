@@ -21,19 +21,20 @@ Example:
 
 from __future__ import annotations
 
-import hashlib
 import json
 import shutil
 import tempfile
+from collections.abc import Callable
 from dataclasses import asdict, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from gripper.calibration.calfile import Calibration, design_hash
 from gripper.calibration.fit import FitConfig, FitResult, fit_hinges
 from gripper.calibration.measured import read_measured_csv
 from gripper.calibration.reference import BendingRecord, ReferenceConfig, run_reference
 from gripper.calibration.report import write_report
+from gripper.core.hashing import stable_hash
 from gripper.core.params import DEFAULT_CALIBRATION_FILE, GripperParams
 
 REFERENCE_KINDS = ("continuum", "fmbs")
@@ -42,11 +43,14 @@ REFERENCE_KINDS = ("continuum", "fmbs")
 DEFAULT_FILES = ("calibration.json", "report.png", "errors.csv", "reference.json",
                  "convergence.json")
 
+if TYPE_CHECKING:
+    from gripper.calibration.fmbs import FmbsConfig
+
 
 def settings_hash(settings: dict) -> str:
     """Hash of a calibration's reference and fit settings (what, besides the design, its
     result depends on) [hex]."""
-    return hashlib.sha256(json.dumps(settings, sort_keys=True).encode()).hexdigest()[:16]
+    return stable_hash(settings)
 
 
 # Fraction of the closure angle the continuum reference's highest tension bends the average
@@ -79,8 +83,8 @@ def default_settings(kind: str = "continuum", fmbs=None) -> dict:
 
 def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
               data: str | Path | None = None, reference: ReferenceConfig | None = None,
-              fit: FitConfig | None = None, kind: str = "continuum", fmbs=None,
-              converge: bool = True, on_progress=None
+              fit: FitConfig | None = None, kind: str = "continuum", fmbs: FmbsConfig | None = None,
+              converge: bool = True, on_progress: Callable[[str], None] | None = None
               ) -> tuple[Calibration, FitResult, BendingRecord]:
     """Run the reference (or read ``data``), fit, write ``calibration.json`` and the report.
 
@@ -152,6 +156,7 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
             if kind == "fmbs":
                 from gripper.calibration.fmbs import fmbs_tension_max, run_fmbs
 
+                assert fmbs is not None  # defaulted above
                 if reference is None:
                     run_cfg = replace(run_cfg, tension_max=fmbs_tension_max(p, fmbs))
                 say(f"flexible multibody run ({fmbs.reading} reading, "

@@ -19,14 +19,16 @@ from __future__ import annotations
 import math
 import time
 import zlib
+from typing import Any
 
 import mujoco
 import numpy as np
 
-from gripper.core.hashing import config_hash
+from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
+from gripper.experiments.record import TrialRecord
 from gripper.objects.library import (
     GraspObject,
     Placement,
@@ -59,8 +61,8 @@ def grasp_height(p: GripperParams, obj: GraspObject, proto: GraspProtocol) -> fl
 def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
               params: GripperParams | None = None, protocol: GraspProtocol | None = None,
               noise: TrialNoise | None = None, placement: Placement | None = None,
-              frame_sink=None) -> dict:
-    """Run one scripted grasp trial; return its record (a JSON-ready dict, SI units).
+              frame_sink=None) -> TrialRecord:
+    """Run one scripted grasp trial; return its record (:class:`TrialRecord`, SI units).
 
     ``placement`` overrides the sampled perturbation. ``frame_sink`` (optional, see
     :class:`gripper.render.video.FrameRecorder`) gets ``start(model, probe)`` once and then
@@ -74,11 +76,11 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
     p = p.replace(sim=p.sim.replace(timestep=proto.timestep)).validate()
     noise = (noise or TrialNoise()).validate()
     place = placement or sample_placement(obj, noise, seed, index)
-    record = {
+    head: dict[str, Any] = {
         "trial_id": f"{obj.name}-{seed}-{index:04d}", "object": obj.name, "seed": seed, "index": index,
         "perturbation": {"x_m": place.x, "y_m": place.y, "yaw_rad": place.yaw,
                          "mass_scale": place.mass_scale, "friction_scale": place.friction_scale},
-        "config_hash": config_hash(p.to_dict(), proto.to_dict(), noise.to_dict(), obj.to_dict()),
+        "config_hash": stable_hash([p.to_dict(), proto.to_dict(), noise.to_dict(), obj.to_dict()]),
         "versions": versions(),
     }
     wall0 = time.perf_counter()
@@ -91,15 +93,14 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
         frame_sink.start(m, probe)
         rec.frame_sink = frame_sink
     try:
-        out = run_protocol(m, d, p, obj, proto, probe, rec)
-        record.update(status="ok", **out)
+        outcome = {"status": "ok", **run_protocol(m, d, p, obj, proto, probe, rec)}
     except SimulationUnstable as e:
-        record.update(status="error", success=None, failed_phase=None, error=str(e))
-    record.update(
+        outcome = {"status": "error", "success": None, "failed_phase": None, "error": str(e)}
+    return TrialRecord(
+        **head, **outcome,
         peak_total_force_N=rec.peak_total, peak_finger_force_N=rec.peak_finger.tolist(),
         peak_cable_tension_N=rec.peak_tension, warnings=int(sum(w.number for w in d.warning)),
         sim_time_s=float(d.time), wall_time_s=time.perf_counter() - wall0)
-    return record
 
 
 def run_protocol(m, d, p, obj, proto, probe, rec) -> dict:

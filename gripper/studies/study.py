@@ -66,6 +66,7 @@ from typing import Any
 import numpy as np
 
 from gripper.bench.defaults import DEFAULT_WORKERS
+from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
 
@@ -135,8 +136,7 @@ class Study:
                 "seed": self.seed}
 
     def hash(self) -> str:
-        from gripper.core.hashing import config_hash
-        return config_hash(self.identity())
+                return stable_hash([self.identity()])
 
 
 def _get(p: GripperParams, dotted: str):

@@ -1,0 +1,53 @@
+"""mkdocs hook: pages generated from the code at build time, so they cannot go stale.
+
+- ``<!-- cli-reference -->``: every ``gripper`` subcommand's ``--help``, from the parser itself;
+- ``<!-- trial-record-schema -->``: the trial record's JSON schema;
+- ``<!-- protocol-table -->``: the grasp protocol's fields (unit, allowed, source) from their
+  metadata.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+
+
+def _cli_reference() -> str:
+    os.environ["COLUMNS"] = "100"  # argparse wraps to the terminal width: fix it
+    from gripper.cli.main import build_parser
+
+    parser = build_parser()
+    out = ["```text", parser.format_help().rstrip(), "```"]
+    sub = next(a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction")
+    for name, p in sub.choices.items():  # type: ignore[attr-defined]
+        out += [f"## gripper {name}", "", "```text", p.format_help().rstrip(), "```", ""]
+    return "\n".join(out)
+
+
+def _schema() -> str:
+    from gripper.experiments.record import TrialRecord
+
+    return "```json\n" + json.dumps(TrialRecord.json_schema(), indent=2) + "\n```"
+
+
+def _protocol_table() -> str:
+    from gripper.core.fields import field_specs
+    from gripper.experiments.protocol import GraspProtocol, TrialNoise
+
+    lines = ["| field | default | unit | allowed | source |", "|---|---|---|---|---|"]
+    for cls, prefix in ((GraspProtocol, "protocol"), (TrialNoise, "noise")):
+        for name, spec in field_specs(cls).items():
+            lines.append(f"| {prefix}.{name} | {getattr(cls(), name)} | {spec.unit} | {spec.allowed()} "
+                         f"| {spec.source} |")
+    return "\n".join(lines)
+
+
+MARKERS = {"<!-- cli-reference -->": _cli_reference, "<!-- trial-record-schema -->": _schema,
+           "<!-- protocol-table -->": _protocol_table}
+
+
+def on_page_markdown(markdown: str, **kwargs) -> str:
+    for marker, make in MARKERS.items():
+        if marker in markdown:
+            markdown = markdown.replace(marker, make())
+    return markdown

@@ -1,0 +1,63 @@
+"""The package's architecture: layers (import-linter), no imports of the package root or of
+another module's private names, and a lazy package root."""
+
+from __future__ import annotations
+
+import ast
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "gripper"
+LINT_IMPORTS = Path(sys.executable).with_name("lint-imports")
+
+
+def _modules():
+    return [p for p in PACKAGE.rglob("*.py") if p != PACKAGE / "__init__.py"]
+
+
+def _imports(path: Path):
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            yield node.module, [a.name for a in node.names]
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                yield a.name, []
+
+
+def test_no_module_imports_the_package_root():
+    bad = [f"{p.relative_to(ROOT)}: {mod}" for p in _modules() for mod, names in _imports(p)
+           if mod == "gripper"]
+    assert not bad, bad
+
+
+def test_no_private_name_crosses_modules():
+    bad = [f"{p.relative_to(ROOT)}: {mod}.{n}" for p in _modules() for mod, names in _imports(p)
+           if mod.startswith("gripper.") for n in names if n.startswith("_")]
+    assert not bad, bad
+
+
+def test_import_gripper_is_lazy():
+    code = ("import sys, gripper; heavy = [m for m in ('mujoco', 'scipy', 'dask', 'matplotlib') "
+            "if m in sys.modules]; print(heavy); assert not heavy; gripper.GripperParams; "
+            "print(gripper.__version__)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0, out.stdout + out.stderr
+
+
+@pytest.mark.skipif(not LINT_IMPORTS.exists(), reason="import-linter not installed")
+def test_an_upward_import_breaks_the_layers_contract(tmp_path):
+    """The contract can fail: the package copied with core importing the command line."""
+    shutil.copytree(PACKAGE, tmp_path / "gripper", ignore=shutil.ignore_patterns("data", "__pycache__"))
+    shutil.copy(ROOT / ".importlinter", tmp_path / ".importlinter")
+    units = tmp_path / "gripper" / "core" / "units.py"
+    units.write_text(units.read_text() + "\nimport gripper.cli.main  # noqa\n")
+    env = {"PYTHONPATH": str(tmp_path), "PATH": str(LINT_IMPORTS.parent)}
+    out = subprocess.run([str(LINT_IMPORTS), "--no-cache"], cwd=tmp_path, env=env,
+                         capture_output=True, text=True)
+    assert out.returncode != 0, out.stdout
+    assert "gripper.core.units -> gripper.cli.main" in out.stdout, out.stdout
