@@ -61,3 +61,17 @@ def test_an_upward_import_breaks_the_layers_contract(tmp_path):
                          capture_output=True, text=True)
     assert out.returncode != 0, out.stdout
     assert "gripper.core.units -> gripper.cli.main" in out.stdout, out.stdout
+
+
+def test_environment_id_follows_its_version_history():
+    """Gymnasium's rule: a new -vN whenever the dynamics change; the docstring's history ends
+    with the registered version."""
+    import re
+
+    from gripper.envs.grasp_env import SoftGripperGraspEnv
+    from gripper.envs.registration import ENV_ID
+
+    history = (SoftGripperGraspEnv.__doc__ or "").split("## Version history", 1)[1].split("Example:")[0]
+    versions = re.findall(r"^\s*- (v\d+)", history, flags=re.M)
+    assert versions, "no version history in the environment's docstring"
+    assert ENV_ID.endswith("-" + versions[-1]), (ENV_ID, versions[-1])

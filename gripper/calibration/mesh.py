@@ -64,9 +64,7 @@ class MeshResolution(Validated):
     Attributes:
         scale: refinement factor applied to every count [-]; 1 default, 2 for convergence.
         along: cells along one element (x), cosine-graded [-]. Default 4: 2.3 mm at the ends
-            where the bridges bend (3 runs 1.7x faster but bent 12 % less in an unsettled
-            comparison of version 0.4.0; the README's convergence table has the figures at
-            rest for 4, 6 and 8).
+            where the bridges bend (``docs/calibration.md``, "Reference defaults").
         bridge: cells through the bridge thickness [-]. Default 2 (2.25 and 0.75 mm with the
             default ``bridge_grading``): the bridges carry the bending, so they get two cells
             through their thickness.

@@ -99,10 +99,9 @@ class ReferenceConfig(Validated):
             Table 2: 0.5).
         first_mode_hz: first bending frequency used to turn zeta into mass-proportional
             damping [Hz].
-            Default 1.5 Hz: the period of the default finger's response to a 0.05 N tension
-            step in this reference, measured on a lightly damped run (zeta 0.02, 2 ms steps):
-            0.67 s on the full mesh, 0.65 s (1.53 Hz) on the graded half mesh of version 0.4.1;
-            the same method gives 0.44 s on the Kuhn-split mesh at 2 ms and at 5e-4 s.
+            Default 1.5 Hz: the period of the default finger's response to a small tension
+            step, measured on a lightly damped run (``docs/calibration.md``, "Reference
+            defaults").
         mesh_mode_damping: flex (Rayleigh stiffness-proportional) damping [s]. Default 1e-5 s:
             zeta about 0.6 for the finest mesh modes (bulk wave at 59 m/s across a 1 mm cell,
             about 1.2e5 rad/s) and 7e-5 at the first mode, so it damps mesh noise only.

@@ -73,31 +73,20 @@ class FingerGeometry(Validated):
     Finger frame: x along the finger from the palm to the tip, z from the back (bridge side,
     z = 0) to the grasping face (z = ``height``), y across. Cuts open on the grasping face;
     the cable runs through holes above the bridge, so pulling it closes the cuts and curls the
-    finger towards its grasping face.
+    finger towards its grasping face. Each field's unit, range and source are in its metadata
+    (the model README's parameter table lists them).
 
     Attributes:
-        n_segments: number of elements, the base element B1 fixed to the palm included
-            [-] (paper 000 §III: six elements B1..B6, five spring hinges).
-        pitch: element length along the finger, cut centre to cut centre [m]. Assumed 16 mm:
-            96 mm fingers, about the size of the paper's photographed gripper fingers.
-        width: element width across the finger (y) [m]. Assumed 16 mm.
-        height: element height from back to grasping face (z) [m]. Assumed 18 mm: room for
-            a bridge of a few mm (1.9 mm, below), a 6 mm hole and 3 mm of wall on the grasping
-            face.
-        cut_angle_deg: opening angle of each triangular cut [deg] (paper 000 §II: 45°). A hinge
-            stops where its cut closes (:attr:`closure_angle_deg`).
-        bridge_thickness: silicone left under each cut [m]. 1.9 mm: the bridge at which the
-            mesh-converged continuum body of paper 000's silicone has the equivalent hinge
-            spring of Table 2's "1.9e-3 N·m/deg" read per radian (root 1.892 mm, a root-find on
-            the reference, ``docs/consistency.md``), the one reading a bridge of this finger can
-            reach (read per degree it needs more than the 8.3 mm the channel leaves). The
-            paper gives no dimension; 0.5.x assumed 3 mm.
-        hole_height: height of the cable-hole axis above the back face [m]. Assumed 12 mm:
-            10.1 mm above the bridge (the brief's 8-10 mm), an 11.05 mm lever arm about the
-            hinge.
-        hole_diameter: diameter of the cable holes [m] (paper 000 §II: 6 mm).
-        extension_limit_deg: how far a hinge may bend backwards (opening the cut) [deg].
-            Assumed 5°: the bridge and the closed back face resist extension stiffly.
+        n_segments: number of elements, the base element B1 fixed to the palm included.
+        pitch: element length along the finger, cut centre to cut centre.
+        width: element width across the finger (y).
+        height: element height from back to grasping face (z).
+        cut_angle_deg: opening angle of each triangular cut. A hinge stops where its cut closes
+            (:attr:`closure_angle_deg`).
+        bridge_thickness: silicone left under each cut (the hinge's bridge).
+        hole_height: height of the cable-hole axis above the back face.
+        hole_diameter: diameter of the cable holes.
+        extension_limit_deg: how far a hinge may bend backwards (opening the cut).
     """
 
     SECTION = "finger"
@@ -168,19 +157,17 @@ class FingerGeometry(Validated):
 
 @dataclass(frozen=True)
 class Material(Validated):
-    """Silicone of the finger body.
+    """Silicone of the finger body (paper 000 Tables 1-2, paper 001 §2.3).
 
     Attributes:
-        density: [kg/m³] (paper 000, Table 1: 1.12 g/cm³).
-        youngs_modulus: [Pa] (paper 000, Table 2: 0.44 MPa).
-        poisson_ratio: [-] (paper 000, Table 2: 0.48).
-        shore_a: hardness [Shore A] (paper 000, Table 1: 20 ± 2 A).
-        tensile_strength: [Pa] (paper 000, Table 1: 4 MPa).
-        elongation_at_break: strain at break [-] (paper 000, Table 1: >= 500 %).
-        yeoh_c10, yeoh_c20, yeoh_c30: Yeoh coefficients of RTV 230 silicone [Pa]
-            (paper 001, §2.3: 0.11596, 0.0168, -0.000319 MPa).
-        friction: sliding friction coefficient of the silicone pads [-]. Assumed 1.0:
-            soft silicone on dry plastic, paper and latex is typically 0.8-1.5.
+        density: mass density.
+        youngs_modulus: small-strain Young's modulus.
+        poisson_ratio: Poisson's ratio.
+        shore_a: hardness.
+        tensile_strength: stress at break.
+        elongation_at_break: strain at break.
+        yeoh_c10, yeoh_c20, yeoh_c30: Yeoh coefficients of RTV 230 silicone.
+        friction: sliding friction coefficient of the silicone pads.
     """
 
     SECTION = "material"
@@ -205,30 +192,25 @@ class HingeSprings(Validated):
     The defaults are the committed calibration of the default design
     (:data:`DEFAULT_CALIBRATION_FILE`: the hinge finger fitted to the converged continuum
     reference, see ``docs/calibration.md``). :meth:`paper` gives paper 000's Table 2 spring
-    instead, for comparison.
+    instead, for comparison. Paper 000's own damping ("10 N·m·s/deg") is implausible and is not
+    used (``docs/calibration.md``).
 
     Attributes:
-        stiffness: per-hinge stiffness [N·m/rad]. Default: fitted (committed calibration).
-        damping: per-hinge damping [N·m·s/rad]. Default: fitted to the reference's transient,
-            which carries paper 000's modal damping 0.5 (Table 2). The paper's own "10
-            N·m·s/deg" is implausible (K/c ≈ 5000 s) and is not used.
-        rest_angle_deg: spring rest angle of each hinge [deg]; 0 = moulded straight.
+        stiffness: per-hinge stiffness.
+        damping: per-hinge damping, fitted to the reference's transient.
+        rest_angle_deg: spring rest angle of each hinge; 0 = moulded straight.
         closure: how a hinge resists closing past its closure angle, where the faces of its
-            cut meet (see :mod:`gripper.model.closure`):
+            cut meet (:mod:`gripper.model.closure`; the model README gives the figures):
 
             - ``"teeth"`` (default): the silicone teeth on either side of the cut are
-              squeezed, a neo-Hookean solid of the finger's Young's modulus: 2.25 N·m/rad for
-              the default design at small overrun, stiffening fivefold by 8.2° as the thin tips
-              are squashed (:mod:`gripper.model.closure`). Independent of the time step, so grasp
-              results are too.
+              squeezed, a neo-Hookean solid of the finger's Young's modulus, stiffening as
+              their thin tips are squashed. Independent of the time step, so grasp results
+              are too.
             - ``"stiffness"``: a linear compliant stop of ``closure_stiffness``.
-            - ``"rigid"``: a hard stop as stiff as the time step allows (limit time constant
-              four steps): the idealisation of paper 000's hinge chain. Its overrun grows as
-              the step squared (0.3° at stall tension at 5e-4 s, 6° at 2 ms), so grasp
-              results then depend on the step.
-        closure_stiffness: rotational stiffness of a closed cut [N·m/rad], used only when
-            ``closure == "stiffness"``. The default 1.0 is a placeholder of the teeth
-            estimate's order; set it from a measurement.
+            - ``"rigid"``: a hard stop as stiff as the time step allows: the idealisation of
+              paper 000's hinge chain, whose overrun grows as the step squared.
+        closure_stiffness: rotational stiffness of a closed cut, used only when
+            ``closure == "stiffness"``; set it from a measurement.
     """
 
     SECTION = "springs"
@@ -292,14 +274,12 @@ class HingeSprings(Validated):
 
 @dataclass(frozen=True)
 class Cable(Validated):
-    """The driving cable (paper 000 §II: polyethylene fibre, Ø 0.5 mm, fixed at the tip).
+    """The driving cable (paper 000 §II: polyethylene fibre, fixed at the tip).
 
     Attributes:
-        diameter: [m] (paper 000 §II: 0.5 mm).
-        youngs_modulus: effective axial modulus of the braided fibre [Pa]. Assumed 50 GPa:
-            UHMW-polyethylene fibre is 100-120 GPa, a braided line about half of that.
-        friction_loss: dry friction of the cable in its holes [N]. Assumed 0: the 0.5 mm cable
-            runs loose in 6 mm holes (paper 000 §II).
+        diameter: cable diameter.
+        youngs_modulus: effective axial modulus of the braided fibre.
+        friction_loss: dry friction of the cable in its holes.
     """
 
     SECTION = "cable"
@@ -320,14 +300,12 @@ class ServoParams(Validated):
     """The servo that reels each cable in: a datasheet preset, a spool and controller tuning.
 
     Attributes:
-        preset: key of :data:`gripper.core.servo.SERVO_PRESETS` ("hobby_6v" or "smart_12v").
-        spool_radius: radius the cable winds on [m]. Assumed 15 mm: 180° of hobby-servo
-            travel then reels in 47 mm, enough to close all five default cuts (≈ 50 mm).
-        saturation_error_deg: position error at which the PD asks for the stall torque [deg].
-            Assumed 0.6°, about a hobby servo's dead band.
-        damping_ratio: damping ratio of the position loop on the rotor inertia [-]. Assumed 1.
+        preset: key of :data:`gripper.core.servo.SERVO_PRESETS`.
+        spool_radius: radius the cable winds on.
+        saturation_error_deg: position error at which the PD asks for the stall torque.
+        damping_ratio: damping ratio of the position loop on the rotor inertia.
         contraction_speed: default cable contraction speed, the slew limit of the position
-            set-point [m/s]; 0 means the servo's no-load speed times the spool radius.
+            set-point; 0 means the servo's no-load speed times the spool radius.
     """
 
     SECTION = "servo"
@@ -362,15 +340,11 @@ class GripperLayout(Validated):
     """How the fingers sit on the palm.
 
     Attributes:
-        n_fingers: number of fingers, evenly spaced around the palm axis [-] (paper 000 §V:
-            four).
-        palm_radius: distance from the palm axis to each finger's grasping face [m]. Assumed
-            40 mm: an 80 mm opening takes the balloon, boxes and cylinders of the grasp set.
-        palm_thickness: thickness of the palm plate [m]. Assumed 20 mm (3D-printed hub).
-        mount_tilt_deg: finger splay at the mount, positive tilting the tips outwards [deg].
-            Assumed 0 (fingers hang straight down, as in the paper's photograph).
-        palm_mass: mass of palm, servos and cable routing, carried by the lift [kg]. Assumed
-            0.35 kg: four 55 g servos plus a printed hub.
+        n_fingers: number of fingers, evenly spaced around the palm axis.
+        palm_radius: distance from the palm axis to each finger's grasping face.
+        palm_thickness: thickness of the palm plate.
+        mount_tilt_deg: finger splay at the mount, positive tilting the tips outwards.
+        palm_mass: mass of palm, servos and cable routing, carried by the lift.
     """
 
     SECTION = "layout"
@@ -391,14 +365,13 @@ class LiftAxis(Validated):
     Each axis is a position-controlled linear stage (MuJoCo ``position`` actuator).
 
     Attributes:
-        z_travel: lift travel below and above the home height [m]. Assumed ±0.25 m.
-        xy_enabled: add horizontal x and y axes (needed to shake the object) [-].
-        xy_travel: horizontal travel either side [m]. Assumed ±0.05 m.
-        stiffness: position gain of each axis [N/m]. Assumed 4000 N/m: 1 mm error per 4 N.
-        damping_ratio: damping ratio of each axis with the palm mass [-]. Assumed 1.
-        max_force: force limit of each axis [N]. Assumed 60 N, a small linear stage.
-        home_height: palm-face height above the floor at zero lift [m]. Assumed 0.25 m:
-            96 mm fingers clear a 100 mm object with room to approach.
+        z_travel: lift travel below and above the home height.
+        xy_enabled: add horizontal x and y axes (needed to shake the object).
+        xy_travel: horizontal travel either side.
+        stiffness: position gain of each axis.
+        damping_ratio: damping ratio of each axis with the palm mass.
+        max_force: force limit of each axis.
+        home_height: palm-face height above the floor at zero lift.
     """
 
     SECTION = "lift"
@@ -418,12 +391,13 @@ INTEGRATORS = ("euler", "implicit", "implicitfast", "rk4")
 
 @dataclass(frozen=True)
 class SimOptions(Validated):
-    """Simulation settings of the gripper model.
+    """Simulation settings of the gripper model (grasp trials replace the step with
+    :data:`gripper.core.timesteps.TRIAL_TIMESTEP`).
 
     Attributes:
-        timestep: [s]. Default 1 ms (see the model README for the convergence check).
-        integrator: MuJoCo integrator, one of euler, implicit, implicitfast, rk4.
-        gravity: gravitational acceleration along -z [m/s²].
+        timestep: physics step.
+        integrator: MuJoCo integrator.
+        gravity: gravitational acceleration along -z.
     """
 
     SECTION = "sim"

@@ -24,6 +24,7 @@ from gripper.envs.core import (
     start_episode,
     unstable_result,
 )
+from gripper.envs.registration import ENV_ID
 
 # "human" (MuJoCo's viewer window) is offered only where a display exists
 RENDER_MODES = ["rgb_array", "depth_array"] + (
@@ -59,7 +60,7 @@ def env_arguments(**kwargs) -> dict:
     try:
         bound = sig.bind(None, **kwargs)
     except TypeError as e:
-        raise ValueError(f"SoftGripperGrasp-v1: {e}") from None
+        raise ValueError(f"{ENV_ID}: {e}") from None
     bound.apply_defaults()
     a = dict(bound.arguments)
     a.pop("self")
@@ -217,6 +218,8 @@ class SoftGripperGraspEnv(gym.Env):
       (read per radian) consistent with the silicone (``docs/consistency.md``). Spaces, rewards
       and episode rules are unchanged; the dynamics are not, hence the new version. v0 is
       no longer registered.
+    - v1, package 0.7.0: unchanged (the package was layered); seeded episodes are bitwise
+      those of 0.6.0 (``scripts/fingerprint.py``).
 
     Example:
         >>> import gymnasium as gym

@@ -6,7 +6,7 @@ between chunks the runner checks stability (MuJoCo warnings, non-finite state), 
 damage. Cable tension is the tendon-limit force sensor, recorded at every step by the rollout;
 per-finger contact force is the sum of the normal forces of all contacts between that finger's
 elements and the object, read from the contact list at the end of every chunk (so peaks are
-sampled every ``chunk_steps`` steps, 20 ms by default at the 2 ms step).
+sampled every ``chunk_steps`` steps, 40 ms by default at the 2 ms step).
 
 Example:
     >>> from gripper.experiments.trial import run_trial

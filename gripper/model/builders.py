@@ -40,6 +40,7 @@ from gripper.model.geometry import (
     element_vertices,
 )
 from gripper.model.names import MODEL_NAME, FingerNames, finger_name
+from gripper.objects.library import get_object
 
 SILICONE_RGBA = (0.93, 0.93, 0.88, 1.0)
 
@@ -386,7 +387,7 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
 def build_scene_spec(p: GripperParams, *, with_object: bool = True) -> mujoco.MjSpec:
     """Gripper plus floor, lights, cameras and (optionally) a rigid test block under the palm.
 
-    The test block is 40 × 40 × 60 mm, 60 g (a PLA-like part with infill), friction 0.8.
+    The test block is the object library's ``block`` (its size, mass and friction).
     """
     spec = build_gripper_spec(p)
     spec.visual.global_.offwidth = 640
@@ -404,10 +405,11 @@ def build_scene_spec(p: GripperParams, *, with_object: bool = True) -> mujoco.Mj
     spec.worldbody.add_camera(name="front", pos=[0, -0.45, 0.2], xyaxes=[1, 0, 0, 0, 0.3, 1])
     spec.worldbody.add_camera(name="side", pos=[0.45, 0, 0.2], xyaxes=[0, 1, 0, -0.3, 0, 1])
     if with_object:
-        obj = spec.worldbody.add_body(name="object", pos=[0, 0, 0.030])
+        block = get_object("block")
+        obj = spec.worldbody.add_body(name="object", pos=[0, 0, block.size[2]])
         obj.add_freejoint(name="object_free")
         obj.add_geom(name="object_geom", type=mujoco.mjtGeom.mjGEOM_BOX,
-                     size=[0.020, 0.020, 0.030], mass=0.060, friction=[0.8, 0.005, 1e-4],
+                     size=list(block.size), mass=block.mass, friction=[block.friction, 0.005, 1e-4],
                      rgba=[0.2, 0.5, 0.8, 1])
     return spec
 
