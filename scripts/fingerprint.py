@@ -9,24 +9,28 @@ same script runs on any version:
 - ``bench``: SHA-256 of ``trials.jsonl`` from ``gripper bench --trials 2`` on the five default
   objects, records sorted by (object, index), with the keys that are not physics removed: the
   wall time, the package versions and the run's configuration hash (which embeds the version);
-- ``study``: SHA-256 of ``results.csv`` from a two-point study with every response kind, with
-  the wall-time and configuration-hash columns removed.
+- ``study``: SHA-256 of ``results.csv`` from a two-point study with every response kind.
 
 Run: .venv/bin/python scripts/fingerprint.py --out runs/fingerprint [--json FILE]
+
+An older source tree runs with ``PYTHONPATH=<its checkout>`` (its command is run as
+``python -m``, flat ``gripper.cli`` or layered ``gripper.cli.main``).
 """
 
 import argparse
 import csv
 import hashlib
+import importlib.util
 import json
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
 
-NOT_PHYSICS = ("wall_time_s", "versions", "run_config_hash", "config_hash")
+NOT_PHYSICS = ("wall_time_s", "versions", "run_config_hash")
 
 STUDY = """
 [study]
@@ -63,8 +67,12 @@ def env_hash(steps: int = 120) -> str:
 
 
 def gripper_cli(*args: str) -> None:
-    exe = Path(sys.executable).with_name("gripper")
-    subprocess.run([str(exe), *args, "--no-progress"], check=True, stdout=subprocess.DEVNULL)
+    layered = importlib.util.find_spec("gripper.cli") is not None and importlib.util.find_spec(
+        "gripper.cli").submodule_search_locations is not None
+    module = "gripper.cli.main" if layered else "gripper.cli"
+    # run outside any checkout, so that ``-m`` does not put one first on sys.path
+    subprocess.run([sys.executable, "-m", module, *args, "--no-progress"], check=True,
+                   stdout=subprocess.DEVNULL, cwd=tempfile.gettempdir())
 
 
 def bench_hash(out: Path) -> str:
@@ -90,6 +98,7 @@ def main() -> None:
     ap.add_argument("--out", type=Path, required=True, help="a new folder for the runs")
     ap.add_argument("--json", type=Path, help="also write the hashes here")
     args = ap.parse_args()
+    args.out = args.out.resolve()
     args.out.mkdir(parents=True, exist_ok=False)
     result = {"env": env_hash(), "bench": bench_hash(args.out), "study": study_hash(args.out)}
     for k, v in result.items():

@@ -8,10 +8,9 @@ Run: MUJOCO_GL=egl .venv/bin/python scripts/make_readme_picture.py [--out docs/g
 
 import argparse
 
-import gripper  # noqa: F401  (chooses the headless GL backend before mujoco is imported)
 import mediapy
-import mujoco
 
+import gripper  # noqa: F401  (chooses the headless GL backend before mujoco is imported)
 from gripper.experiments.trial import run_trial
 from gripper.render.renderer import FreeView, SceneRenderer
 from gripper.render.video import FrameRecorder
@@ -22,6 +21,8 @@ def main() -> None:
     ap.add_argument("--out", default="docs/grasp.png")
     ap.add_argument("--object", default="balloon")
     args = ap.parse_args()
+    import mujoco  # after gripper: the GL backend is chosen first
+
     rec = FrameRecorder(fps=10.0)
     run_trial(args.object, 0, 0, frame_sink=rec)
     m = rec.model

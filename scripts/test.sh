@@ -1,17 +1,26 @@
 #!/usr/bin/env bash
 # Lint (ruff), the import layers (import-linter), types (mypy), the docs site (mkdocs --strict)
-# and the default test suite; --slow adds the slow tests.
+# and the default test suite; --slow adds the slow tests. mypy runs beside the test suite (it is
+# single-threaded and mostly waits on its numpy stubs), and its verdict is read at the end.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 export MUJOCO_GL="${MUJOCO_GL:-egl}"
 .venv/bin/ruff check gripper tests scripts docs/hooks
 .venv/bin/lint-imports --no-cache >/dev/null || .venv/bin/lint-imports --no-cache
-.venv/bin/mypy
-NO_MKDOCS_2_WARNING=1 .venv/bin/mkdocs build --strict --quiet --site-dir "${TMPDIR:-/tmp}/gripper-site-$$"
-rm -rf "${TMPDIR:-/tmp}/gripper-site-$$"
+site="$(mktemp -d)"
+mypy_log="$(mktemp)"
+trap 'rm -rf "$site" "$mypy_log"' EXIT
+NO_MKDOCS_2_WARNING=1 .venv/bin/mkdocs build --strict --quiet --site-dir "$site"
+.venv/bin/mypy >"$mypy_log" 2>&1 &
+mypy_pid=$!
 if [ "${1:-}" = "--slow" ]; then
   .venv/bin/python -m pytest -q -m "slow or not slow"
 else
   .venv/bin/python -m pytest -q
+fi
+if ! wait "$mypy_pid"; then
+  cat "$mypy_log" >&2
+  echo "mypy: type errors (above)" >&2
+  exit 1
 fi
