@@ -75,3 +75,14 @@ def test_environment_id_follows_its_version_history():
     versions = re.findall(r"^\s*- (v\d+)", history, flags=re.M)
     assert versions, "no version history in the environment's docstring"
     assert ENV_ID.endswith("-" + versions[-1]), (ENV_ID, versions[-1])
+
+
+def test_the_committed_models_are_package_data():
+    from gripper.core.resources import DATA_DIR, MODEL_DIR, STUDIES_DIR
+
+    assert DATA_DIR.is_relative_to(PACKAGE)
+    for path in (MODEL_DIR / "soft_gripper.xml", MODEL_DIR / "calibration.json",
+                 STUDIES_DIR / "one_at_a_time.toml"):
+        assert path.is_file(), path
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    assert '"data/**/*"' in pyproject, "package data must ship gripper/data in the wheel"
