@@ -9,7 +9,7 @@ Video, pictures and design studies:
 
     >>> from gripper import record_trial_video, load_study, run_study               # doctest: +SKIP
     >>> record_trial_video("balloon", "balloon.mp4", camera="track")               # doctest: +SKIP
-    >>> run_study(load_study("gripper/data/studies/one_at_a_time.toml"), "runs/oat")      # doctest: +SKIP
+    >>> run_study(load_study("one_at_a_time"), "runs/oat")                          # doctest: +SKIP
 
 Calibration of the hinge springs against the flex reference finger or bench data:
 

@@ -171,3 +171,9 @@ def test_limits_exclude_points_from_recommendations(tmp_path):
     f.write_text(STUDY + "at_least = { grasp_sphere_success_rate = 1.0 }\n")
     with pytest.raises(ValueError, match="at_least"):
         load_study(f)
+
+
+def test_a_shipped_study_loads_by_name():
+    from gripper.core.resources import STUDIES_DIR
+
+    assert load_study("one_at_a_time") == load_study(STUDIES_DIR / "one_at_a_time.toml")

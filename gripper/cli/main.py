@@ -390,7 +390,8 @@ def build_parser() -> argparse.ArgumentParser:
         description="Vary design parameters (one at a time, factorial or Latin hypercube), compute the "
                     "responses of every design point on Dask, and write results.jsonl, results.csv, one "
                     "plot per parameter and recommendations.md into --out. Rerunning resumes.")
-    st.add_argument("file", metavar="FILE.toml")
+    st.add_argument("file", metavar="FILE.toml",
+                    help="a study file, or a shipped study by name: one_at_a_time, latin_hypercube")
     st.add_argument("--out", required=True, metavar="DIR")
     st.add_argument("--workers", type=int, default=DEFAULT_WORKERS, help="local worker processes (default %(default)s)")
     st.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://127.0.0.1:8786")

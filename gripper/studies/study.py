@@ -46,7 +46,7 @@ k ∝ E·w·t³ sets the springs and the point is marked ``calibrated = false`` 
 
 Example:
     >>> from gripper.studies.study import load_study
-    >>> study = load_study("gripper/data/studies/one_at_a_time.toml")   # doctest: +SKIP
+    >>> study = load_study("one_at_a_time")   # doctest: +SKIP
 """
 
 from __future__ import annotations
@@ -68,6 +68,7 @@ import numpy as np
 from gripper.bench.defaults import DEFAULT_WORKERS
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
+from gripper.core.resources import STUDIES_DIR
 from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
 
 DESIGNS = ("one_at_a_time", "factorial", "latin_hypercube")
@@ -231,11 +232,17 @@ def _surrogate_for(base: GripperParams, p: GripperParams, changes: dict):
 def load_study(path: str | Path) -> Study:
     """Parse and validate a study file; every error names the key and its line.
 
+    ``path`` is a file, or the name of a study shipped with the package (``one_at_a_time``,
+    ``latin_hypercube``: ``gripper/data/studies``), so the examples work from an installed wheel.
+
     Raises:
         ValueError: unreadable file, bad TOML, unknown key or parameter, wrong type, value out of
             range (checked by building every design point before any work starts).
     """
     path = Path(path)
+    shipped = STUDIES_DIR / f"{path.name}.toml"
+    if not path.exists() and path.suffix == "" and path.parent == Path(".") and shipped.is_file():
+        path = shipped
     try:
         text = path.read_text()
         data = tomllib.loads(text)
