@@ -11,10 +11,11 @@ import pytest
 
 from gripper.core.fields import field_specs
 from gripper.core.params import _SECTIONS, GripperParams, parameter_help, parameter_rows
-from gripper.experiments.protocol import GraspProtocol, TrialNoise
+from gripper.experiments.protocol import BendingConfig, GraspProtocol, TrialNoise
 from gripper.model.menagerie import parameter_table
 
-CLASSES = [(name, cls) for name, cls in _SECTIONS.items()] + [("protocol", GraspProtocol), ("noise", TrialNoise)]
+CLASSES = [(name, cls) for name, cls in _SECTIONS.items()] + [("protocol", GraspProtocol), ("noise", TrialNoise),
+                                                           ("bend", BendingConfig)]
 
 
 def _outside(spec):

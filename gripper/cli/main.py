@@ -16,8 +16,16 @@ import sys
 
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
 from gripper.core.params import GripperParams, parameter_help
-from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
-from gripper.experiments.protocol import GraspProtocol, TrialNoise
+from gripper.experiments.protocol import (
+    CRUSH_DEPTH,
+    CRUSH_HOLD_S,
+    CRUSH_SPEED,
+    PULL_MAX,
+    PULL_RATE,
+    BendingConfig,
+    GraspProtocol,
+    TrialNoise,
+)
 
 EXIT_BAD_INPUT = 2
 EXIT_UNSTABLE = 3
@@ -138,7 +146,10 @@ def _cmd_bench(args) -> int:
 
 
 def _protocol_and_noise(args):
-    from gripper.experiments.protocol import GraspProtocol, TrialNoise
+    from gripper.experiments.protocol import (
+    GraspProtocol,
+    TrialNoise,
+)
 
     if args.noise < 0:
         raise ValueError(f"--noise: must be >= 0 m, got {args.noise}")
@@ -309,6 +320,7 @@ def build_parser() -> argparse.ArgumentParser:
                             "radian (paper_per_radian), for comparison")
         return p
 
+    bend = BendingConfig()
     b = with_params(sub.add_parser(
         "bend", help="paper 000's bending test of one finger",
         description="Ramp the cable shortening rate r from 0 to r_max over the run (dynamic) or "
@@ -317,15 +329,15 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--json", action="store_true",
                    help="print a JSON object with arrays r, tension_N, joint_angles_deg, "
                         "bending_angle_deg, tip_xyz_m")
-    b.add_argument("--mode", choices=("dynamic", "quasi_static"), default="dynamic")
+    b.add_argument("--mode", choices=("dynamic", "quasi_static"), default=bend.mode)
     b.add_argument("--figure", metavar="FILE.png",
                    help="also write a PNG: side-view montage of the finger at six shortening rates "
                         "and the bending-angle curve")
-    b.add_argument("--r-max", type=float, default=0.45, help="final shortening rate (default 0.45)")
-    b.add_argument("--duration", type=float, default=2.0, help="ramp time [s] (default 2)")
-    b.add_argument("--timestep", type=float, default=PAPER_BENDING_TIMESTEP,
-                   help=f"step [s] (default {PAPER_BENDING_TIMESTEP:g}, paper 000 §IV)")
-    b.add_argument("--points", type=int, default=101, help="samples or set-points (default 101)")
+    b.add_argument("--r-max", type=float, default=bend.r_max, help="final shortening rate (default %(default)s)")
+    b.add_argument("--duration", type=float, default=bend.duration, help="ramp time [s] (default %(default)s)")
+    b.add_argument("--timestep", type=float, default=bend.timestep,
+                   help="step [s] (default %(default)s, paper 000 §IV)")
+    b.add_argument("--points", type=int, default=bend.n_points, help="samples or set-points (default %(default)s)")
     b.set_defaults(func=_cmd_bend)
 
     s = with_params(sub.add_parser("servo", help="servo model against its datasheet"))
@@ -434,8 +446,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     po = with_params(sub.add_parser("pullout", help="holding force: pull the held object until it slips 5 mm"))
     po.add_argument("--objects", default="block,cylinder", help="comma-separated names")
-    po.add_argument("--rate", type=float, default=20.0, help="pull ramp [N/s] (default 20)")
-    po.add_argument("--max-force", type=float, default=100.0, help="largest pull [N] (default 100)")
+    po.add_argument("--rate", type=float, default=PULL_RATE, help="pull ramp [N/s] (default %(default)s)")
+    po.add_argument("--max-force", type=float, default=PULL_MAX, help="largest pull [N] (default %(default)s)")
     po.set_defaults(func=_cmd_pullout)
 
     cr = with_params(sub.add_parser(
@@ -444,9 +456,10 @@ def build_parser() -> argparse.ArgumentParser:
                     "--speed, holds --hold seconds and lifts off; prints the object's damage measure "
                     "(balloon/bag: peak edge strain; paper box: permanent dent; rigid: plate force)."))
     cr.add_argument("--objects", default="balloon,paper_box", help="comma-separated names")
-    cr.add_argument("--depth", type=float, default=0.020, help="press depth below the object's top [m] (default 0.02)")
-    cr.add_argument("--speed", type=float, default=0.02, help="plate speed [m/s] (default 0.02)")
-    cr.add_argument("--hold", type=float, default=0.2, help="hold time at depth [s] (default 0.2)")
+    cr.add_argument("--depth", type=float, default=CRUSH_DEPTH,
+                    help="press depth below the object's top [m] (default %(default)s)")
+    cr.add_argument("--speed", type=float, default=CRUSH_SPEED, help="plate speed [m/s] (default %(default)s)")
+    cr.add_argument("--hold", type=float, default=CRUSH_HOLD_S, help="hold time at depth [s] (default %(default)s)")
     cr.add_argument("--json", action="store_true", help="one JSON object per line")
     cr.set_defaults(func=_cmd_crush)
     return parser

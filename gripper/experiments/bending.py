@@ -15,66 +15,17 @@ Example:
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import asdict, dataclass, field
 
 import mujoco
 import numpy as np
 
-from gripper.core.fields import Validated
 from gripper.core.params import GripperParams
-from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
+from gripper.experiments.protocol import BendingConfig
 from gripper.model.builders import build_bending_spec
 from gripper.model.names import FingerNames
 from gripper.sim.stability import SimulationUnstable, check_stable
-
-PAPER_DURATION = 2.0  # s, paper 000 §IV
-
-
-@dataclass(frozen=True)
-class BendingConfig(Validated):
-    """Settings of a bending test.
-
-    Attributes:
-        r_max: final cable shortening rate [-]. Default 0.45: the five default cuts close at
-            r ≈ 0.44 (bending ≈ 206°), inside the hobby servo's 180° travel (r <= 0.65).
-        duration: ramp duration of the dynamic mode [s] (paper 000 §IV: 2 s).
-        timestep: simulation step [s] (paper 000 §IV: 5e-4 s).
-        mode: "dynamic" (one ramp) or "quasi_static" (hold each point until at rest).
-        n_points: number of recorded samples (dynamic) or set-points (quasi-static) [-].
-        settle_tol: quasi-static: largest joint speed counted as at rest [rad/s]. A finger
-            whose hinges move less than ``settle_band_deg`` over a 25 ms chunk also counts as at
-            rest: with the calibrated (soft) springs, hinges meeting a rigid stop under the
-            position servo keep a limit cycle of a few thousandths of a degree (measured: 0.3°/s
-            peak speed at r = 0.307 on 30° cuts, never below 1e-3 rad/s in 10 s).
-        settle_band_deg: quasi-static: largest hinge angle change over a chunk counted as at
-            rest [deg].
-        settle_time_max: quasi-static: longest wait at one set-point [s].
-    """
-
-    r_max: float = 0.45
-    duration: float = PAPER_DURATION
-    timestep: float = PAPER_BENDING_TIMESTEP
-    mode: str = "dynamic"
-    n_points: int = 101
-    settle_tol: float = 1.0e-3
-    settle_time_max: float = 3.0
-    settle_band_deg: float = 0.01
-
-    def validate(self) -> BendingConfig:
-        if not (math.isfinite(self.r_max) and 0.0 < self.r_max < 1.0):
-            raise ValueError(f"bend.r_max: must be in (0, 1), got {self.r_max!r}")
-        if not (math.isfinite(self.duration) and self.duration > 0):
-            raise ValueError(f"bend.duration: must be > 0 s, got {self.duration!r}")
-        if not (math.isfinite(self.timestep) and 0 < self.timestep <= 0.01):
-            raise ValueError(f"bend.timestep: must be in (0, 0.01] s, got {self.timestep!r}")
-        if self.mode not in ("dynamic", "quasi_static"):
-            raise ValueError(f"bend.mode: must be 'dynamic' or 'quasi_static', got {self.mode!r}")
-        if not isinstance(self.n_points, int) or not 2 <= self.n_points <= 100_000:
-            raise ValueError(f"bend.n_points: must be an integer in [2, 100000], "
-                             f"got {self.n_points!r}")
-        return self
 
 
 @dataclass

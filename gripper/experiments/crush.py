@@ -29,6 +29,7 @@ import numpy as np
 
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
+from gripper.experiments.protocol import CRUSH_HOLD_S, CRUSH_SPEED
 from gripper.model.builders import build_scene_spec
 from gripper.objects.library import GraspObject, Placement, add_object, get_object
 from gripper.sim.canonical import apply_canonical_constants
@@ -43,8 +44,8 @@ CRUSH_SETTLE_S = 0.3
 PLATE_HALF = (0.060, 0.060, 0.005)  # m: wider than every library object
 
 
-def crush_test(obj: str | GraspObject, depth: float, *, speed: float = 0.02,
-               hold_s: float = 0.2, params: GripperParams | None = None) -> dict:
+def crush_test(obj: str | GraspObject, depth: float, *, speed: float = CRUSH_SPEED,
+               hold_s: float = CRUSH_HOLD_S, params: GripperParams | None = None) -> dict:
     """Press ``obj`` to ``depth`` [m] below its top at ``speed`` [m/s], hold ``hold_s`` [s], release.
 
     Returns:

@@ -1,7 +1,10 @@
-"""The scripted grasp protocol and the per-trial perturbations (frozen dataclasses, SI units).
+"""The experiments' protocols: the scripted grasp, its per-trial perturbations, the bending test,
+the pull-out and the crush test (frozen dataclasses and constants, SI units).
 
-Phases, in order: settle, approach from above, close (servos ramped to the object's closing
-command at the contraction speed), lift, hold, horizontal shake, optional release.
+Grasp phases, in order: settle, approach from above, close (servos ramped to the object's
+closing command at the contraction speed), lift, hold, horizontal shake, optional release.
+This module needs only the standard library, so the command line shows these defaults in its
+help without importing MuJoCo.
 
 Example:
     >>> from gripper.experiments.protocol import GraspProtocol
@@ -16,7 +19,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from gripper.core.fields import Validated, param
-from gripper.core.timesteps import TRIAL_TIMESTEP
+from gripper.core.timesteps import PAPER_BENDING_TIMESTEP, TRIAL_TIMESTEP
 
 
 @dataclass(frozen=True)
@@ -78,3 +81,45 @@ class TrialNoise(Validated):
 
     def to_dict(self) -> dict[str, Any]:
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+
+@dataclass(frozen=True)
+class BendingConfig(Validated):
+    """Settings of paper 000's bending test (:func:`gripper.experiments.bending.run_bending_test`).
+
+    ``mode`` is ``dynamic`` (one ramp of the cable shortening rate to ``r_max`` over
+    ``duration``) or ``quasi_static`` (each of ``n_points`` set-points held until at rest). At
+    rest means every joint slower than ``settle_tol``, or every hinge moving less than
+    ``settle_band_deg`` over a 25 ms chunk: with the calibrated (soft) springs, hinges meeting a
+    rigid stop under the position servo keep a limit cycle of a few thousandths of a degree
+    (0.3°/s peak speed at r = 0.307 on 30° cuts, never below 1e-3 rad/s in 10 s).
+    """
+
+    SECTION = "bend"
+
+    r_max: float = param(0.45, "-", gt=0, lt=1,
+                         source="the five default cuts close at r ≈ 0.44 (bending ≈ 206°), inside the "
+                         "hobby servo's travel (r <= 0.65)")
+    duration: float = param(2.0, "s", gt=0, source="paper 000 §IV: 2 s")
+    timestep: float = param(PAPER_BENDING_TIMESTEP, "s", gt=0, le=0.01, source="paper 000 §IV: 5e-4 s")
+    mode: str = param("dynamic", "-", choices=("dynamic", "quasi_static"), source="one ramp, or held set-points")
+    n_points: int = param(101, "-", ge=2, le=100_000, integer=True, source="recorded samples or set-points")
+    settle_tol: float = param(1.0e-3, "rad/s", gt=0, source="quasi-static: joint speed counted as at rest")
+    settle_time_max: float = param(3.0, "s", gt=0, source="quasi-static: longest wait at one set-point")
+    settle_band_deg: float = param(0.01, "deg", gt=0,
+                                   source="quasi-static: hinge angle change over a chunk counted as at rest")
+
+
+# Pull-out test (gripper.experiments.pullout): load ramp rate [N/s], the largest load tried [N]
+# and the slip that ends it [m]. 20 N/s keeps the test quasi-static (the grasp's slowest mode,
+# the object swinging in the fingers, is ≈ 5 Hz) and reaches the 100 N cap in 5 s.
+PULL_RATE = 20.0
+PULL_MAX = 100.0
+PULL_SLIP = 0.005
+
+# Crush test (gripper.experiments.crush): plate speed [m/s], hold at depth [s] and the command
+# line's press depth below the object's top [m]. Assumed: a slow press, as a platen test is run;
+# 20 mm of travel takes 1 s.
+CRUSH_SPEED = 0.02
+CRUSH_HOLD_S = 0.2
+CRUSH_DEPTH = 0.020

@@ -8,7 +8,7 @@ import mujoco
 import numpy as np
 
 from gripper.core.params import GripperParams
-from gripper.experiments.protocol import GraspProtocol
+from gripper.experiments.protocol import PULL_MAX, PULL_RATE, PULL_SLIP, GraspProtocol
 from gripper.experiments.trial import run_protocol
 from gripper.objects.library import (
     GraspObject,
@@ -18,17 +18,6 @@ from gripper.objects.library import (
 from gripper.sim.probes import ObjectProbe, PeakRecorder
 from gripper.sim.scene import build_grasp_scene
 from gripper.sim.stability import check_stable
-
-# Pull-out test: load ramp rate [N/s] and the largest load tried [N]. 20 N/s keeps the test
-# quasi-static (the grasp's slowest mode, the object swinging in the fingers, is ≈ 5 Hz) and
-# reaches the 100 N cap in 5 s.
-PULL_RATE = 20.0
-
-
-PULL_MAX = 100.0
-
-
-PULL_SLIP = 0.005
 
 
 def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
