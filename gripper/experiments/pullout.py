@@ -37,7 +37,7 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     for name, v in (("rate", rate), ("max_force", max_force), ("slip", slip)):
         if not (math.isfinite(v) and v > 0):
             raise ValueError(f"pullout.{name}: must be > 0, got {v!r}")
-    m = build_grasp_scene(p, obj, placement or Placement())
+    m = build_grasp_scene(p, obj, (placement or Placement()).validate())
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
     probe = ObjectProbe(m, obj, p.layout.n_fingers)

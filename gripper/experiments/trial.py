@@ -75,7 +75,7 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
     p = (params or GripperParams()).validate()
     p = p.replace(sim=p.sim.replace(timestep=proto.timestep)).validate()
     noise = (noise or TrialNoise()).validate()
-    place = placement or sample_placement(obj, noise, seed, index)
+    place = placement.validate() if placement is not None else sample_placement(obj, noise, seed, index)
     head: dict[str, Any] = {
         "trial_id": f"{obj.name}-{seed}-{index:04d}", "object": obj.name, "seed": seed, "index": index,
         "perturbation": {"x_m": place.x, "y_m": place.y, "yaw_rad": place.yaw,

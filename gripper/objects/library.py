@@ -31,7 +31,7 @@ from pathlib import Path
 
 import mujoco
 
-from gripper.core.fields import Validated
+from gripper.core.fields import Validated, param
 
 OBJECT_BODY = "object"
 CONTENTS_BODY = "object_contents"
@@ -284,20 +284,22 @@ def mesh_object(path: str | Path, *, mass: float | None = None, friction: float 
 # --- building into a scene -----------------------------------------------------------------
 
 @dataclass(frozen=True)
-class Placement:
+class Placement(Validated):
     """Where and how one trial's object is placed (the sampled perturbation).
 
     Attributes:
-        x, y: offset of the object centre from the palm axis [m].
-        yaw: rotation about the vertical [rad].
-        mass_scale, friction_scale: multipliers on the object's mass and friction [-].
+        x, y: offset of the object centre from the palm axis.
+        yaw: rotation about the vertical.
+        mass_scale, friction_scale: multipliers on the object's mass and friction.
     """
 
-    x: float = 0.0
-    y: float = 0.0
-    yaw: float = 0.0
-    mass_scale: float = 1.0
-    friction_scale: float = 1.0
+    SECTION = "placement"
+
+    x: float = param(0.0, "m", source="centred under the palm")
+    y: float = param(0.0, "m", source="centred under the palm")
+    yaw: float = param(0.0, "rad", source="not rotated")
+    mass_scale: float = param(1.0, "-", gt=0, source="the object's own mass")
+    friction_scale: float = param(1.0, "-", gt=0, source="the object's own friction")
 
 
 def _yaw_quat(yaw: float) -> list[float]:
