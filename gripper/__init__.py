@@ -32,9 +32,9 @@ The Gymnasium environment ``SoftGripperGrasp-v1`` is registered on import:
 import importlib
 from typing import TYPE_CHECKING, Any
 
-from gripper.render.backend import choose_gl_backend
+from gripper.render.backend import defer_gl_backend
 
-choose_gl_backend()  # before anything imports mujoco: headless EGL unless MUJOCO_GL is set
+defer_gl_backend()  # no OpenGL library until something renders (gripper.render.backend)
 
 # The public API, imported on first use (``import gripper`` stays quick): name -> module.
 _EXPORTS = {

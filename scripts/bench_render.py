@@ -11,7 +11,7 @@ import statistics
 import tempfile
 import time
 
-import gripper  # noqa: F401  (chooses the headless GL backend before mujoco is imported)
+import gripper  # noqa: F401  (registers the environments; the GL backend is chosen at the first render)
 from gripper.experiments.trial import run_trial
 from gripper.render.video import FrameRecorder, record_trial_video, render_frames
 

@@ -10,7 +10,7 @@ import argparse
 
 import mediapy
 
-import gripper  # noqa: F401  (chooses the headless GL backend before mujoco is imported)
+import gripper  # noqa: F401  (registers the environments; the GL backend is chosen at the first render)
 from gripper.experiments.trial import run_trial
 from gripper.render.renderer import FreeView, SceneRenderer
 from gripper.render.video import FrameRecorder

@@ -6,5 +6,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-export MUJOCO_GL="${MUJOCO_GL:-egl}"
 .venv/bin/gripper bench --trials 10 --workers 2 --out runs/bench "$@"

@@ -5,7 +5,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-export MUJOCO_GL="${MUJOCO_GL:-egl}"
 .venv/bin/ruff check gripper tests scripts docs/hooks
 .venv/bin/lint-imports --no-cache >/dev/null || .venv/bin/lint-imports --no-cache
 site="$(mktemp -d)"

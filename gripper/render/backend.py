@@ -1,61 +1,111 @@
-"""The OpenGL backend for headless rendering, chosen before MuJoCo is imported.
+"""The OpenGL backend for headless rendering, chosen when something first renders.
 
-``MUJOCO_GL`` if the user set it, else ``egl`` (software Mesa EGL works with no display and no
-GPU), else ``osmesa`` where only that library is installed."""
+MuJoCo binds its OpenGL backend (``MUJOCO_GL``) when ``mujoco`` is imported, and with ``egl``
+that import maps Mesa's EGL and GL libraries into the process. Some libraries loaded later
+crash next to them (PyTorch's optimisers, through triton's native module), so importing
+``gripper`` and simulating must not touch a graphics library:
+
+- :func:`defer_gl_backend` (run by ``import gripper``): if the user did not set ``MUJOCO_GL``,
+  set it to ``disable`` and mark the choice as deferred (``GRIPPER_GL_DEFERRED``, inherited by
+  worker processes). MuJoCo then loads no OpenGL backend at all.
+- :func:`ensure_gl_backend` (run before the first render): if the choice was deferred, probe
+  in a child process whether an EGL display starts; use ``egl`` if so, else ``osmesa`` if
+  libOSMesa is installed; point MuJoCo's renderer at that backend. A ``MUJOCO_GL`` the user
+  set is always kept.
+"""
 
 from __future__ import annotations
 
 import ctypes.util
+import importlib
 import os
+import subprocess
+import sys
+
+DEFERRED = "GRIPPER_GL_DEFERRED"
+
+# Run in a child process: exit 0 if a headless EGL display can be initialised, the way MuJoCo's
+# EGL backend opens one (an EGL device via eglQueryDevicesEXT / eglGetPlatformDisplayEXT).
+_EGL_PROBE = """
+import ctypes, ctypes.util, sys
+name = ctypes.util.find_library("EGL")
+if not name:
+    sys.exit(1)
+lib = ctypes.CDLL(name)
+lib.eglGetProcAddress.restype = ctypes.c_void_p
+lib.eglGetProcAddress.argtypes = [ctypes.c_char_p]
+lib.eglInitialize.restype = ctypes.c_uint
+lib.eglInitialize.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
+lib.eglTerminate.argtypes = [ctypes.c_void_p]
+q = lib.eglGetProcAddress(b"eglQueryDevicesEXT")
+g = lib.eglGetProcAddress(b"eglGetPlatformDisplayEXT")
+if not (q and g):
+    sys.exit(1)
+query = ctypes.CFUNCTYPE(ctypes.c_uint, ctypes.c_int, ctypes.POINTER(ctypes.c_void_p),
+                         ctypes.POINTER(ctypes.c_int))(q)
+get_display = ctypes.CFUNCTYPE(ctypes.c_void_p, ctypes.c_uint, ctypes.c_void_p, ctypes.c_void_p)(g)
+devices = (ctypes.c_void_p * 16)()
+n = ctypes.c_int(0)
+if not query(16, devices, ctypes.byref(n)):
+    sys.exit(1)
+for i in range(n.value):
+    dpy = get_display(0x313F, devices[i], None)  # EGL_PLATFORM_DEVICE_EXT
+    if dpy and lib.eglInitialize(dpy, None, None):
+        lib.eglTerminate(dpy)
+        sys.exit(0)
+sys.exit(1)
+"""
+# The probe is a ctypes call into Mesa; it takes about 0.1 s and cannot hang on a headless
+# machine, but a broken driver stack must not stall the first render for long.
+PROBE_TIMEOUT_S = 20.0
 
 
-def choose_gl_backend() -> str | None:
-    """Set ``MUJOCO_GL`` unless the user did: ``egl`` if an EGL display starts, else ``osmesa``
-    if libOSMesa is installed, else leave it unset (rendering then fails with :func:`gl_error`'s
-    message, which says what to install). Must run before ``import mujoco``; returns the value in
-    effect."""
+def defer_gl_backend() -> None:
+    """Keep MuJoCo from loading an OpenGL backend until something renders (see the module
+    docstring); a ``MUJOCO_GL`` the user set is kept."""
     if "MUJOCO_GL" not in os.environ:
-        if egl_starts():
-            os.environ["MUJOCO_GL"] = "egl"
-        elif ctypes.util.find_library("OSMesa"):
-            os.environ["MUJOCO_GL"] = "osmesa"
-            os.environ.setdefault("PYOPENGL_PLATFORM", "osmesa")
-    return os.environ.get("MUJOCO_GL")
+        os.environ["MUJOCO_GL"] = "disable"
+        os.environ[DEFERRED] = "1"
 
 
 def egl_starts() -> bool:
-    """Whether a headless EGL display can be initialised, the way MuJoCo's EGL backend opens one
-    (an EGL device via ``eglQueryDevicesEXT`` / ``eglGetPlatformDisplayEXT``); about 0.1 s with
-    Mesa's software EGL. Uses ctypes only, so it can run before anything imports OpenGL."""
-    name = ctypes.util.find_library("EGL")
-    if not name:
-        return False
+    """Whether a headless EGL display can be initialised, probed in a child process (this
+    process maps no EGL library)."""
     try:
-        lib = ctypes.CDLL(name)
-        lib.eglGetProcAddress.restype = ctypes.c_void_p
-        lib.eglGetProcAddress.argtypes = [ctypes.c_char_p]
-        lib.eglInitialize.restype = ctypes.c_uint
-        lib.eglInitialize.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
-        lib.eglTerminate.argtypes = [ctypes.c_void_p]
-        q = lib.eglGetProcAddress(b"eglQueryDevicesEXT")
-        g = lib.eglGetProcAddress(b"eglGetPlatformDisplayEXT")
-        if not (q and g):
-            return False
-        query = ctypes.CFUNCTYPE(ctypes.c_uint, ctypes.c_int, ctypes.POINTER(ctypes.c_void_p),
-                                 ctypes.POINTER(ctypes.c_int))(q)
-        get_display = ctypes.CFUNCTYPE(ctypes.c_void_p, ctypes.c_uint, ctypes.c_void_p, ctypes.c_void_p)(g)
-        devices = (ctypes.c_void_p * 16)()
-        n = ctypes.c_int(0)
-        if not query(16, devices, ctypes.byref(n)):
-            return False
-        for i in range(n.value):
-            dpy = get_display(0x313F, devices[i], None)  # EGL_PLATFORM_DEVICE_EXT
-            if dpy and lib.eglInitialize(dpy, None, None):
-                lib.eglTerminate(dpy)
-                return True
-    except (OSError, AttributeError):
+        done = subprocess.run([sys.executable, "-c", _EGL_PROBE], capture_output=True,
+                              timeout=PROBE_TIMEOUT_S)
+    except (OSError, subprocess.TimeoutExpired):
         return False
-    return False
+    return done.returncode == 0
+
+
+def choose_gl_backend() -> str | None:
+    """The headless backend this machine supports: ``egl`` if an EGL display starts, else
+    ``osmesa`` if libOSMesa is installed, else None (rendering then fails with
+    :func:`gl_error`'s message, which says what to install)."""
+    if egl_starts():
+        return "egl"
+    if ctypes.util.find_library("OSMesa"):
+        return "osmesa"
+    return None
+
+
+def ensure_gl_backend() -> str | None:
+    """Before the first render: settle a deferred backend choice and bind MuJoCo's renderer to
+    it. Returns the ``MUJOCO_GL`` in effect (None: no backend could be found)."""
+    if os.environ.get(DEFERRED) != "1":
+        return os.environ.get("MUJOCO_GL")
+    backend = choose_gl_backend()
+    del os.environ[DEFERRED]
+    if backend is None:
+        os.environ.pop("MUJOCO_GL", None)
+        return None
+    os.environ["MUJOCO_GL"] = backend
+    if backend == "osmesa":
+        os.environ.setdefault("PYOPENGL_PLATFORM", "osmesa")
+    if "mujoco" in sys.modules:  # bound to "disable" at import: bind it to the chosen backend
+        importlib.reload(importlib.import_module("mujoco.rendering.classic.gl_context"))
+    return backend
 
 
 def gl_error(err: Exception) -> RuntimeError:
@@ -63,5 +113,5 @@ def gl_error(err: Exception) -> RuntimeError:
     return RuntimeError(
         f"render: cannot start an OpenGL context with MUJOCO_GL={backend} ({err}). Headless rendering "
         "needs Mesa EGL (Debian: apt install libegl1 libgl1-mesa-dri) or OSMesa (apt install "
-        "libosmesa6, then MUJOCO_GL=osmesa). MUJOCO_GL must be set before mujoco is imported: "
-        "import gripper first, or export MUJOCO_GL=egl.")
+        "libosmesa6, then MUJOCO_GL=osmesa). A MUJOCO_GL you set yourself must be set before "
+        "mujoco is imported.")

@@ -1,8 +1,9 @@
 """Headless offscreen rendering of gripper scenes: camera presets and one reusable renderer.
 
-The OpenGL backend is chosen in ``gripper/__init__.py`` before MuJoCo is imported (see
-:func:`choose_gl_backend`): ``MUJOCO_GL`` if the user set it, else ``egl`` (software Mesa EGL
-works with no display and no GPU), else ``osmesa`` where only that library is installed.
+The OpenGL backend is chosen when the first renderer is made
+(:func:`gripper.render.backend.ensure_gl_backend`): ``MUJOCO_GL`` if the user set it, else
+``egl`` (software Mesa EGL works with no display and no GPU), else ``osmesa`` where only that
+library is installed.
 
 Example:
     >>> from gripper.render.renderer import SceneRenderer                      # doctest: +SKIP
@@ -15,7 +16,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
-from gripper.render.backend import gl_error
+from gripper.render.backend import ensure_gl_backend, gl_error
 
 # Presets. "front" and "side" are the scene's own fixed cameras, "palm" looks down from the palm
 # at the object; "top" and "track" are free cameras set here (no change to the committed model):
@@ -82,6 +83,7 @@ class SceneRenderer:
         import mujoco
 
         check_view(width, height, camera)
+        ensure_gl_backend()
         self.model = model
         # the offscreen framebuffer must hold the image: raise it for this model when needed
         model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
