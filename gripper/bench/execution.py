@@ -14,8 +14,10 @@ from __future__ import annotations
 
 import json
 import os
+import socket
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from urllib.parse import urlsplit
 
 
 def read_jsonl(path: Path) -> list[dict]:
@@ -30,11 +32,41 @@ def read_jsonl(path: Path) -> list[dict]:
     return [json.loads(line) for line in keep.decode().splitlines() if line.strip()]
 
 
+# How long a --scheduler address may take to accept a connection before it counts as unreachable [s].
+SCHEDULER_TIMEOUT_S = 5.0
+
+
+def check_scheduler(address: str | None, timeout: float = SCHEDULER_TIMEOUT_S) -> None:
+    """Refuse, before any work, a Dask scheduler address that is malformed or does not accept a
+    TCP connection within ``timeout`` (None: a local cluster, nothing to check).
+
+    Raises:
+        ValueError: one line naming ``--scheduler``, the address and the reason.
+    """
+    if address is None:
+        return
+    parts = urlsplit(address if "://" in address else f"tcp://{address}")
+    try:
+        port = parts.port
+    except ValueError:
+        port = None
+    if parts.scheme not in ("tcp", "tls") or not parts.hostname or port is None:
+        raise ValueError(f"--scheduler: expected tcp://HOST:PORT, got {address!r}")
+    try:
+        socket.create_connection((parts.hostname, port), timeout=timeout).close()
+    except OSError as e:
+        reason = e.strerror or type(e).__name__
+        raise ValueError(f"--scheduler: cannot reach {address} within {timeout:g} s ({reason}); start "
+                         "one with 'dask scheduler', or leave --scheduler out for a local cluster") from None
+
+
 def claim_run_dir(out: Path, filename: str, key: str, h: str, payload: dict, what: str) -> None:
     """Create ``out`` and record the run's identity in ``out/filename`` ({key}_hash, {key},
     versions); an existing record with another hash is refused (ValueError naming ``--out``)."""
+    from gripper.core.atomic import check_output_dir
     from gripper.core.provenance import versions
 
+    check_output_dir(out)
     out.mkdir(parents=True, exist_ok=True)
     cfile = out / filename
     if cfile.exists():

@@ -123,72 +123,79 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
         source = "measured"
         settings: dict[str, Any] = {"data": str(data)}
         say(f"read {len(record.static)} static points from {data}")
+    created = [d for d in (out.parent, *out.parent.parents) if not d.exists()]
     out.parent.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(dir=out.parent, prefix=f".{out.name}.") as tmp_name:
-        tmp = Path(tmp_name)
-        if data is None:
-            fit_cfg = fit or FitConfig()
-            settings = {"kind": kind, "reference": ref_cfg.to_dict(), "fit": asdict(fit_cfg)}
-            if kind == "fmbs":
-                from gripper.calibration.fmbs import FmbsConfig
+    try:
+        with tempfile.TemporaryDirectory(dir=out.parent, prefix=f".{out.name}.") as tmp_name:
+            tmp = Path(tmp_name)
+            if data is None:
+                fit_cfg = fit or FitConfig()
+                settings = {"kind": kind, "reference": ref_cfg.to_dict(), "fit": asdict(fit_cfg)}
+                if kind == "fmbs":
+                    from gripper.calibration.fmbs import FmbsConfig
 
-                fmbs = fmbs or FmbsConfig()
-                settings["fmbs"] = fmbs.to_dict()
-            else:
-                fmbs = None
-            run_cfg = ref_cfg
-            if converge:
-                from gripper.calibration.convergence import format_convergence, mesh_convergence
+                    fmbs = fmbs or FmbsConfig()
+                    settings["fmbs"] = fmbs.to_dict()
+                else:
+                    fmbs = None
+                run_cfg = ref_cfg
+                if converge:
+                    from gripper.calibration.convergence import format_convergence, mesh_convergence
 
-                say(f"mesh convergence of the {kind} model (linear solves on 4 meshes) ...")
-                conv = mesh_convergence(p, ref_cfg.mesh, clamp_length=ref_cfg.clamp_length,
-                                        fmbs=fmbs if kind == "fmbs" else None, on_progress=say)
-                (tmp / "convergence.json").write_text(json.dumps(conv.to_dict(), indent=2) + "\n")
-                say(format_convergence(conv))
-                run_cfg = replace(ref_cfg, modulus_factor=conv.stiffness_correction)
-                if reference is None and kind == "continuum":
-                    run_cfg = replace(run_cfg, tension_max=auto_tension_max(p, conv))
-                settings["convergence"] = {
-                    "stiffness_correction": conv.stiffness_correction,
-                    "default_error": conv.default_error,
-                    "order": conv.richardson.order, "gci_fine": conv.richardson.gci_fine,
-                    "extrapolated_compliance_deg_per_N": conv.richardson.extrapolated}
-            if kind == "fmbs":
-                from gripper.calibration.fmbs import fmbs_tension_max, run_fmbs
+                    say(f"mesh convergence of the {kind} model (linear solves on 4 meshes) ...")
+                    conv = mesh_convergence(p, ref_cfg.mesh, clamp_length=ref_cfg.clamp_length,
+                                            fmbs=fmbs if kind == "fmbs" else None, on_progress=say)
+                    (tmp / "convergence.json").write_text(json.dumps(conv.to_dict(), indent=2) + "\n")
+                    say(format_convergence(conv))
+                    run_cfg = replace(ref_cfg, modulus_factor=conv.stiffness_correction)
+                    if reference is None and kind == "continuum":
+                        run_cfg = replace(run_cfg, tension_max=auto_tension_max(p, conv))
+                    settings["convergence"] = {
+                        "stiffness_correction": conv.stiffness_correction,
+                        "default_error": conv.default_error,
+                        "order": conv.richardson.order, "gci_fine": conv.richardson.gci_fine,
+                        "extrapolated_compliance_deg_per_N": conv.richardson.extrapolated}
+                if kind == "fmbs":
+                    from gripper.calibration.fmbs import fmbs_tension_max, run_fmbs
 
-                assert fmbs is not None  # defaulted above
-                if reference is None:
-                    run_cfg = replace(run_cfg, tension_max=fmbs_tension_max(p, fmbs))
-                say(f"flexible multibody run ({fmbs.reading} reading, "
-                    f"{run_cfg.tension_max:.3g} N) ...")
-                record = run_fmbs(p, run_cfg, fmbs)
-            else:
-                say("continuum reference run (flex finger, several minutes) ...")
-                record = run_reference(p, run_cfg)
-            source = kind
-            settings["run"] = {"modulus_factor": run_cfg.modulus_factor,
-                               "tension_max": run_cfg.tension_max}
-            (tmp / "reference.json").write_text(json.dumps(record.to_json_dict()) + "\n")
-            say(f"reference: {record.wall_time_s:.1f} s wall")
-        say("fitting the hinge model ...")
-        result = fit_hinges(record, p, fit_cfg)
-        metrics = dict(result.metrics, fit_wall_time_s=result.wall_time_s,
-                       fit_iterations=result.iterations)
-        if data is None:
-            metrics["reference_wall_time_s"] = record.wall_time_s
-        settings["settings_hash"] = settings_hash({k: v for k, v in settings.items()
-                                                   if k in ("kind", "reference", "fit", "fmbs")})
-        cal = Calibration(design_hash=design_hash(p), source=source,
-                          stiffness=tuple(float(v) for v in result.stiffness),
-                          damping=tuple(float(v) for v in result.damping),
-                          rest_angle_deg=tuple(float(v) for v in result.rest_angle_deg),
-                          metrics=metrics, settings=settings)
-        cal.save(tmp / "calibration.json")
-        write_report(tmp, record, result, title=source)
-        out.mkdir(exist_ok=True)
-        for f in tmp.iterdir():
-            f.replace(out / f.name)
-    return cal, result, record
+                    assert fmbs is not None  # defaulted above
+                    if reference is None:
+                        run_cfg = replace(run_cfg, tension_max=fmbs_tension_max(p, fmbs))
+                    say(f"flexible multibody run ({fmbs.reading} reading, "
+                        f"{run_cfg.tension_max:.3g} N) ...")
+                    record = run_fmbs(p, run_cfg, fmbs)
+                else:
+                    say("continuum reference run (flex finger, several minutes) ...")
+                    record = run_reference(p, run_cfg)
+                source = kind
+                settings["run"] = {"modulus_factor": run_cfg.modulus_factor,
+                                   "tension_max": run_cfg.tension_max}
+                (tmp / "reference.json").write_text(json.dumps(record.to_json_dict()) + "\n")
+                say(f"reference: {record.wall_time_s:.1f} s wall")
+            say("fitting the hinge model ...")
+            result = fit_hinges(record, p, fit_cfg)
+            metrics = dict(result.metrics, fit_wall_time_s=result.wall_time_s,
+                           fit_iterations=result.iterations)
+            if data is None:
+                metrics["reference_wall_time_s"] = record.wall_time_s
+            settings["settings_hash"] = settings_hash({k: v for k, v in settings.items()
+                                                       if k in ("kind", "reference", "fit", "fmbs")})
+            cal = Calibration(design_hash=design_hash(p), source=source,
+                              stiffness=tuple(float(v) for v in result.stiffness),
+                              damping=tuple(float(v) for v in result.damping),
+                              rest_angle_deg=tuple(float(v) for v in result.rest_angle_deg),
+                              metrics=metrics, settings=settings)
+            cal.save(tmp / "calibration.json")
+            write_report(tmp, record, result, title=source)
+            out.mkdir(exist_ok=True)
+            for f in tmp.iterdir():
+                f.replace(out / f.name)
+        return cal, result, record
+    except BaseException:
+        for d in created:  # folders made for this run only: a failed run leaves nothing behind
+            if d.is_dir() and not any(d.iterdir()):
+                d.rmdir()
+        raise
 
 
 def stale_reasons(cal: Calibration, params: GripperParams | None = None) -> list[str]:

@@ -12,9 +12,12 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
+from gripper.bench.execution import check_scheduler
+from gripper.core.atomic import check_output_dir, check_output_file
 from gripper.core.params import GripperParams, parameter_help
 from gripper.experiments.protocol import (
     CRUSH_DEPTH,
@@ -29,6 +32,7 @@ from gripper.experiments.protocol import (
 
 EXIT_BAD_INPUT = 2
 EXIT_UNSTABLE = 3
+EXIT_BROKEN_PIPE = 1
 
 
 def _params(args) -> GripperParams:
@@ -89,6 +93,7 @@ def _cmd_servo(args) -> int:
 
 
 def _cmd_params(args) -> int:
+    check_output_file(args.out, "--out", (".json", ".toml"))
     path = _params(args).save(args.out)
     print(f"wrote {path}")
     return 0
@@ -97,7 +102,8 @@ def _cmd_params(args) -> int:
 def _cmd_write_models(args) -> int:
     from gripper.model.menagerie import REPO_MODELS, write_model_files
 
-    for path in write_model_files(args.out or REPO_MODELS, _params(args)):
+    out = check_output_dir(args.out or REPO_MODELS)
+    for path in write_model_files(out, _params(args)):
         print(f"wrote {path}")
     return 0
 
@@ -125,6 +131,8 @@ def _cmd_bench(args) -> int:
         raise ValueError(f"--trials: must be >= 1, got {args.trials}")
     if args.workers < 1:
         raise ValueError(f"--workers: must be >= 1, got {args.workers}")
+    check_output_dir(args.out)
+    check_scheduler(args.scheduler)
     proto, noise = _protocol_and_noise(args)
     cfg = BenchConfig(objects=_csv_objects(args.objects), trials=args.trials, seed=args.seed,
                       params=_params(args), protocol=proto, noise=noise).validate()
@@ -166,7 +174,8 @@ def _cmd_video(args) -> int:
     obj = get_object(args.object)
     res = record_trial_video(obj, args.out, seed=args.seed, index=args.index, params=_params(args),
                              protocol=proto, noise=noise, width=args.width, height=args.height, fps=args.fps,
-                             camera=args.camera, overlay=not args.no_overlay, still=args.still)
+                             camera=args.camera, overlay=not args.no_overlay, still=args.still,
+                             on_progress=lambda msg: print(msg, file=sys.stderr, flush=True))
     outcome = "error" if res["status"] == "error" else ("success" if res["success"] else
                                                         f"failed ({res['failed_phase']})")
     print(f"{res['trial_id']}: {outcome}; wrote {res['video']} ({res['frames']} frames, "
@@ -202,6 +211,7 @@ def _cmd_calibrate(args) -> int:
         print(f"wrote gripper/data/soft_gripper/calibration.json: stiffness "
               f"{', '.join(f'{k:.4g}' for k in cal.stiffness)} N·m/rad")
         return 0
+    check_output_dir(args.out)
     p = _params(args)
     ref = None
     if args.mesh_scale != 1 or args.tension_max is not None or args.levels != 5:
@@ -246,9 +256,11 @@ def _cmd_calibrate(args) -> int:
 def _cmd_study(args) -> int:
     from gripper.studies.study import load_study, run_study
 
+    check_output_dir(args.out)
     study = load_study(args.file)
     if args.workers < 1:
         raise ValueError(f"--workers: must be >= 1, got {args.workers}")
+    check_scheduler(args.scheduler)
     records = run_study(study, args.out, workers=args.workers, scheduler=args.scheduler,
                         progress=not args.no_progress)
     failed = sum(r["status"] != "ok" for r in records)
@@ -478,6 +490,12 @@ def main(argv: list[str] | None = None) -> int:
     except SimulationUnstable as e:
         print(f"gripper {args.command}: unstable simulation: {e}", file=sys.stderr)
         return EXIT_UNSTABLE
+    except BrokenPipeError:
+        # the reader stopped early (``gripper bend | head``): end quietly, as Python's docs
+        # advise, with stdout pointed at devnull so the interpreter's final flush cannot fail
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
 
 
 if __name__ == "__main__":  # pragma: no cover

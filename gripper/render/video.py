@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -112,10 +113,12 @@ def write_video(frames: np.ndarray, out: str | Path, fps: float) -> None:
 
 def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, params=None, protocol=None,
                        noise=None, width: int = 640, height: int = 480, fps: float = 30.0,
-                       camera: str = "front", overlay: bool = True, still: str | Path | None = None) -> dict:
+                       camera: str = "front", overlay: bool = True, still: str | Path | None = None,
+                       on_progress: Callable[[str], None] | None = None) -> dict:
     """Run one scripted trial and write its video; return the trial record plus video figures.
 
     ``still``: also write one frame as PNG, the first of the hold phase (the object lifted).
+    ``on_progress``: called with a line as each stage starts (simulate, render, encode).
 
     Raises:
         ValueError: bad output path, camera, size or fps (checked before the trial runs).
@@ -130,13 +133,17 @@ def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, p
     check_view(width, height, camera, prefix="--")
     if not (isinstance(fps, int | float) and 1 <= fps <= 120):
         raise ValueError(f"--fps: must be in [1, 120], got {fps!r}")
+    say = on_progress or (lambda msg: None)
     rec = FrameRecorder(fps=float(fps))
+    say(f"simulating the trial ({obj if isinstance(obj, str) else obj.name}, seed {seed}, trial {index}) ...")
     t0 = time.perf_counter()
     record = run_trial(obj, seed, index, params=params, protocol=protocol, noise=noise, frame_sink=rec)
     t_sim = time.perf_counter() - t0
+    say(f"rendering {len(rec.states)} frames ({width}x{height}, camera {camera}) ...")
     t0 = time.perf_counter()
     frames = render_frames(rec, width=width, height=height, camera=camera, overlay=overlay)
     t_render = time.perf_counter() - t0
+    say(f"encoding {out.name} ...")
     t0 = time.perf_counter()
     write_video(frames, out, fps)
     t_write = time.perf_counter() - t0
