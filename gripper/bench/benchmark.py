@@ -39,6 +39,7 @@ import numpy as np
 
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
 from gripper.bench.execution import check_scheduler, claim_run_dir, read_jsonl, run_ordered
+from gripper.core.atomic import write_atomic
 from gripper.core.fields import Validated
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
@@ -76,8 +77,12 @@ class BenchConfig(Validated):
             raise ValueError(f"trials: must be an integer >= 1, got {self.trials!r}")
         if not self.objects:
             raise ValueError("objects: give at least one object")
-        for name in self.objects:
-            get_object(name)
+        seen: dict[str, str] = {}
+        for spec, name in zip(self.objects, self.names(), strict=True):
+            if name in seen:
+                raise ValueError(f"objects: {seen[name]!r} and {spec!r} are both named {name!r}; "
+                                 "give each object of a run its own name")
+            seen[name] = spec
         self.params.validate()
         self.protocol.validate()
         self.noise.validate()
@@ -95,12 +100,19 @@ class BenchConfig(Validated):
     def hash(self) -> str:
         return stable_hash([self.identity()])
 
+    def names(self) -> tuple[str, ...]:
+        """The objects' names as their records give them (:func:`get_object`): a built-in's
+        name, an object file's ``object.name``, a ``mesh:`` spec exactly as given."""
+        return tuple(get_object(o).name for o in self.objects)
+
     def jobs(self) -> list[tuple[str, int]]:
-        """(object, index) in the order records are written."""
-        return [(o, i) for o in self.objects for i in range(self.trials)]
+        """(object name, index) in the order records are written: object by object, as listed,
+        each in index order."""
+        return [(name, i) for name in self.names() for i in range(self.trials)]
 
 
 def _run_one(cfg: BenchConfig, obj: str, index: int) -> dict:
+    """One trial of object spec ``obj``, as the JSON record the run's file holds."""
     rec = run_trial(obj, cfg.seed, index, params=cfg.params, protocol=cfg.protocol, noise=cfg.noise)
     return dataclasses.replace(rec, run_config_hash=cfg.hash()).to_dict()
 
@@ -129,22 +141,39 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
     check_scheduler(scheduler)  # before the folder exists: a refused run leaves nothing
     claim_run_dir(out, "config.json", "config", cfg.hash(), cfg.identity(), "a run with another configuration")
     tpath = out / "trials.jsonl"
-    done: dict[tuple[str, int], Mapping] = {_trial_key(r): r for r in read_trials(tpath)}
-    todo = [j for j in cfg.jobs() if j not in done]
+    done: dict[tuple[str, int], Mapping] = {}
+    for r in read_trials(tpath):
+        done.setdefault(_trial_key(r), r)
+    jobs = cfg.jobs()
+    spec = dict(zip(cfg.names(), cfg.objects, strict=True))
+    todo = [j for j in jobs if j not in done]
     t0 = time.perf_counter()
-    run_ordered([(cfg, obj, i) for obj, i in todo], _run_one, tpath, workers=workers, scheduler=scheduler,
-                on_record=lambda rec: done.__setitem__(_trial_key(rec), rec),
-                progress=(len(cfg.jobs()), len(cfg.jobs()) - len(todo), "grasp trials") if progress else None)
-    records = [done[j] for j in cfg.jobs()]
+    run_ordered([(cfg, spec[name], i) for name, i in todo], _run_one, tpath, workers=workers,
+                scheduler=scheduler, on_record=lambda rec: done.__setitem__(_trial_key(rec), rec),
+                progress=(len(jobs), len(jobs) - len(todo), "grasp trials") if progress else None)
+    _keep_trial_order(tpath, jobs)
+    records = [done[j] for j in jobs]
     summary = summarize(records, cfg, wall_time_s=time.perf_counter() - t0)
     write_summary(out, summary)
     return summary
 
 
+def _keep_trial_order(tpath: Path, jobs: list[tuple[str, int]]) -> None:
+    """Rewrite ``trials.jsonl`` in job order (then any other records, in file order) if a rerun
+    appended out of order (a run extended with more trials); atomic, so no record is lost."""
+    lines = [ln for ln in tpath.read_text().splitlines() if ln.strip()] if tpath.exists() else []
+    rank = {j: k for k, j in enumerate(jobs)}
+    keyed = [(_trial_key(json.loads(ln)), ln) for ln in lines]
+    order = sorted(range(len(keyed)), key=lambda k: (rank.get(keyed[k][0], len(rank)), k))
+    if order == list(range(len(keyed))):
+        return
+    write_atomic(tpath, lambda tmp: Path(tmp).write_text("".join(keyed[k][1] + "\n" for k in order)))
+
+
 def summarize(records: Sequence[Mapping], cfg: BenchConfig, wall_time_s: float = 0.0) -> dict:
     """Per-object statistics of ``records`` (see the module docstring)."""
     per = {}
-    for obj in cfg.objects:
+    for obj in cfg.names():
         rs = [r for r in records if r["object"] == obj]
         ok = [r for r in rs if r["status"] == "ok"]
         n = len(ok)

@@ -29,7 +29,16 @@ def read_jsonl(path: Path) -> list[dict]:
     if len(keep) != len(raw):
         with open(path, "r+b") as f:
             f.truncate(len(keep))
-    return [json.loads(line) for line in keep.decode().splitlines() if line.strip()]
+    out = []
+    for n, line in enumerate(keep.decode(errors="replace").splitlines(), start=1):
+        if not line.strip():
+            continue
+        try:
+            out.append(json.loads(line))
+        except json.JSONDecodeError as e:
+            raise ValueError(f"--out: {path}: line {n} is not a JSON record ({e.msg}); delete that line "
+                             "to resume, or choose a new --out folder") from None
+    return out
 
 
 # How long a --scheduler address may take to accept a connection before it counts as unreachable [s].

@@ -349,7 +349,7 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
         measure = s.obj.damage_limit * 2.0 if measure > 0.0 else 0.0
     else:
         measure = float(pads.sum())
-    newly_damaged = (not ep.damaged) and measure > s.obj.damage_limit
+    newly_damaged = (not ep.damaged) and s.obj.is_damaged(measure)
     ep.damaged = ep.damaged or newly_damaged
     # held: lifted past the success height and not slipping relative to the palm
     if height >= cfg.success_height and not ep.damaged:

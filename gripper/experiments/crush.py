@@ -102,7 +102,7 @@ def crush_test(obj: str | GraspObject, depth: float, *, speed: float = CRUSH_SPE
     measure = damage_measure(m, d, obj, probe, peak_strain=peak_strain, peak_force=peak_force)
     return {"object": obj.name, "depth_m": float(depth), "damage_measure": float(measure),
             "damage_measure_name": obj.damage_measure, "damage_limit": obj.damage_limit,
-            "damaged": bool(measure > obj.damage_limit), "peak_plate_force_N": float(peak_force)}
+            "damaged": obj.is_damaged(measure), "peak_plate_force_N": float(peak_force)}
 
 
 __all__ = ["crush_test"]

@@ -170,7 +170,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec) -> dict:
     if proto.release:
         run_phase(stepper, probe, rec, ctrl(lambda t: close_cmd * np.maximum(0.0, 1 - t / proto.release_s), z_top),
                    proto.release_s, ch, "release")
-    damaged = bool(damage > obj.damage_limit)
+    damaged = obj.is_damaged(damage)
     failed = next((name for name in ("lift", "hold", "shake") if not phase_ok[name][0]), None)
     if failed is None and damaged:
         failed = "damage"

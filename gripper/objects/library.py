@@ -32,6 +32,7 @@ from pathlib import Path
 import mujoco
 
 from gripper.core.fields import Validated, param
+from gripper.core.resources import OBJECTS_DIR
 
 OBJECT_BODY = "object"
 CONTENTS_BODY = "object_contents"
@@ -41,27 +42,45 @@ CONTENTS_BODY = "object_contents"
 DROP_GAP = 0.001
 
 
+# Damage criteria: what is measured, its unit, and the kinds it applies to.
+DAMAGE_CRITERIA = {
+    "strain": ("peak edge strain of the membrane or film [-] (burst or tear above the limit)", ("balloon", "bag")),
+    "dent": ("permanent dent depth after spring-back [m]", ("paper_box",)),
+    "contact_force": ("peak total contact force [N]", ("rigid_box", "rigid_cylinder", "mesh")),
+    "none": ("not damaged by grasping", ("rigid_box", "rigid_cylinder", "mesh")),
+}
+KINDS = ("rigid_box", "rigid_cylinder", "mesh", "balloon", "paper_box", "bag")
+# The open fingers' grasping faces stand this far from the palm axis in the default design
+# (layout.palm_radius): an object's horizontal footprint must fit inside [m].
+APERTURE_RADIUS = 0.040
+
+
 @dataclass(frozen=True)
 class GraspObject(Validated):
-    """One object of the library (SI units).
+    """One grasp object (SI units), from an object file (:mod:`gripper.objects.files`).
 
     Attributes:
-        name: library name.
-        kind: ``rigid_box``, ``rigid_cylinder``, ``balloon``, ``paper_box``, ``bag`` or ``mesh``.
+        name: the object's name, as trial records give it.
+        kind: ``rigid_box``, ``rigid_cylinder``, ``mesh`` (rigid, from a user mesh), or one of
+            the deformable kinds the project models: ``balloon``, ``paper_box``, ``bag``.
         size: half-extents [m] (box: x, y, z; cylinder/balloon: radius, radius, half-height).
         mass: total mass [kg].
         friction: sliding friction coefficient against the silicone pads [-].
         yaw_symmetric: True where yaw does not change the grasp (no yaw is sampled).
-        close_command: default servo closing set-point [rad of spool angle] (the object-specific
+        close_command: servo closing set-point [rad of spool angle] (the object-specific
             closing command of the protocol).
-        damage_limit: threshold of :attr:`damage_measure` above which the object is damaged.
-        damage_measure: what is measured, with its unit.
-        youngs_modulus: [Pa] for flexes (effective modulus for the balloon, see below).
+        damage: the damage criterion (:data:`DAMAGE_CRITERIA`): ``strain``, ``dent``,
+            ``contact_force`` or ``none``.
+        damage_limit: threshold of the criterion's measure above which the object is damaged.
+        youngs_modulus: [Pa] for flexes (effective modulus for the balloon).
         thickness: shell thickness [m] for 2D flexes.
         yield_strain: yield strain [-] of the paper box's card (ideal plasticity), in stretching
-            and in bending alike: the same fibres yield whichever way they are strained.
-        mesh_file: path of a user mesh (kind ``mesh``).
-        notes: where the numbers come from.
+            and in bending alike.
+        mesh_file: path of the mesh (kind ``mesh``).
+        footprint_radius: radius of the mesh hull's horizontal footprint about its centre [m]
+            (kind ``mesh``; 0 for the primitives, whose footprint follows from ``size``).
+        reasons: (field, reason) pairs: where the numbers come from (not part of the physics,
+            so not part of :meth:`to_dict`).
     """
 
     name: str
@@ -71,13 +90,14 @@ class GraspObject(Validated):
     friction: float
     yaw_symmetric: bool
     close_command: float
+    damage: str
     damage_limit: float
-    damage_measure: str
     youngs_modulus: float = 0.0
     thickness: float = 0.0
     yield_strain: float = 0.0
     mesh_file: str = ""
-    notes: str = ""
+    footprint_radius: float = 0.0
+    reasons: tuple[tuple[str, str], ...] = dataclasses.field(default=(), compare=False)
 
     @property
     def height(self) -> float:
@@ -86,7 +106,11 @@ class GraspObject(Validated):
 
     @property
     def half_width(self) -> float:
-        """Largest horizontal half-extent over all yaws [m]."""
+        """Largest horizontal distance of the object from its centre over all yaws [m]: the
+        mesh hull's footprint radius, the box's half-diagonal (its corners sweep a circle when
+        yaw is sampled), or the round objects' radius."""
+        if self.kind == "mesh" and self.footprint_radius > 0:
+            return self.footprint_radius if not self.yaw_symmetric else max(self.size[0], self.size[1])
         if self.kind in ("rigid_box", "paper_box", "mesh") and not self.yaw_symmetric:
             return math.hypot(self.size[0], self.size[1])
         return max(self.size[0], self.size[1])
@@ -95,135 +119,108 @@ class GraspObject(Validated):
     def is_flex(self) -> bool:
         return self.kind in ("balloon", "paper_box", "bag")
 
+    @property
+    def damage_measure(self) -> str:
+        """What the damage criterion measures, with its unit."""
+        return DAMAGE_CRITERIA[self.damage][0]
+
+    def is_damaged(self, measure: float) -> bool:
+        """Whether ``measure`` (of :attr:`damage`) exceeds the limit; never for ``none``."""
+        return self.damage != "none" and measure > self.damage_limit
+
     def validate(self) -> GraspObject:
+        where = f"object.{self.name}"
+        if self.kind not in KINDS:
+            raise ValueError(f"{where}.kind: must be one of {', '.join(KINDS)}, got {self.kind!r}")
         for i, s in enumerate(self.size):
-            if not (math.isfinite(s) and s > 0):
-                raise ValueError(f"object.{self.name}.size[{i}]: must be > 0 m, got {s!r}")
-        for field_name in ("mass", "friction", "close_command", "damage_limit"):
+            if not (isinstance(s, int | float) and math.isfinite(s) and s > 0):
+                raise ValueError(f"{where}.size[{i}]: must be > 0 m, got {s!r}")
+        for field_name in ("mass", "friction", "close_command"):
             v = getattr(self, field_name)
-            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
-                raise ValueError(f"object.{self.name}.{field_name}: must be > 0, got {v!r}")
-        if self.half_width > 0.040:
-            raise ValueError(f"object.{self.name}.size: horizontal half-extent {self.half_width:.3f} m "
-                             "must be <= 0.040 m (the straight-finger aperture radius)")
+            if isinstance(v, bool) or not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+                raise ValueError(f"{where}.{field_name}: must be > 0, got {v!r}")
+        if self.damage not in DAMAGE_CRITERIA or self.kind not in DAMAGE_CRITERIA[self.damage][1]:
+            allowed = [c for c, (_, kinds) in DAMAGE_CRITERIA.items() if self.kind in kinds]
+            raise ValueError(f"{where}.damage: a {self.kind} allows {', '.join(allowed)}, got {self.damage!r}")
+        v = self.damage_limit
+        if self.damage != "none" and (isinstance(v, bool) or not (isinstance(v, int | float)
+                                                                 and math.isfinite(v) and v > 0)):
+            raise ValueError(f"{where}.damage_limit: must be > 0, got {v!r}")
+        if self.half_width > APERTURE_RADIUS:
+            what = "hull footprint radius" if self.kind == "mesh" and self.footprint_radius > 0 else \
+                "horizontal half-extent"
+            raise ValueError(f"{where}.size: its {what} is {self.half_width:.3f} m over all yaws; the open "
+                             f"fingers leave {APERTURE_RADIUS:.3f} m (layout.palm_radius): scale the object "
+                             "down, or declare it yaw_symmetric if it is round")
         return self
 
     def to_dict(self) -> dict:
-        return dataclasses.asdict(self)
+        """The physics of the object (everything but :attr:`reasons`), JSON-ready."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.name != "reasons"}
 
 
 # --- the default library -------------------------------------------------------------------
 
-# Balloon. A small latex balloon inflated to Ø 56 mm (the largest sphere the aperture takes with
-# ±10 mm placement noise). Latex envelope ≈ 2.5 g for a small balloon, air inside 1.2 kg/m³ ×
-# 92 cm³ ≈ 0.1 g, its weight cancelled by buoyancy: 4 g total is used (mass of a small party
-# balloon, weighed values are 2-5 g).
-# Stiffness: an inflated balloon resists squeezing through its overpressure Δp; pressed by a
-# flat plate to depth δ its contact force is F ≈ Δp · 2πRδ (flattened cap area), i.e. a
-# stiffness 2πRΔp. Small latex balloons run at Δp ≈ 2-4 kPa (the pressure maximum of the
-# balloon's inflation curve); 3 kPa at R = 0.028 m gives ≈ 530 N/m. The balloon is a 3D flex
-# (tetrahedra to its centre, trilinear dofs) with an effective Young's modulus of 50 kPa, an
-# assumption: pressed between the floor and a plate (gripper.experiments.crush, stiff flex contact, see
-# FLEX_CONTACT_SOLREF) it takes 2.7 N at 6 mm and 4.8 N at 9 mm below its top, against 3.2 N
-# and 4.8 N from F = 2πRΔp·δ.
-# Burst: latex tears at an elongation of 700-800 % (stretch ≈ 8); an inflated balloon already
-# runs at stretch ≈ 3-4, and stress concentrates where a finger edge presses. We count a burst
-# when any surface edge of the flex stretches more than 25 % beyond its inflated length, a
-# conservative limit (≈ one third of the remaining stretch margin 8/3.5 - 1 ≈ 1.3).
-# Closing command 1.2 rad of spool: the fingers wrap the balloon and hold it with about 6 N in
-# all (edge strain 0.05-0.11 on trials 0-9 of seed 0); 1.4 rad squeezed it to 0.09-0.13 and 1.6
-# rad burst one trial of four, and the servo's full travel (3.0 rad) bursts every one (0.33-0.48).
-BALLOON = GraspObject(
-    name="balloon", kind="balloon", size=(0.028, 0.028, 0.028), mass=0.004, friction=1.0,
-    yaw_symmetric=True, close_command=1.2, damage_limit=0.25,
-    damage_measure="peak membrane edge strain [-] (burst above the limit)",
-    youngs_modulus=5.0e4,
-    notes="silicone on latex is grippy (μ ≈ 1); effective modulus see objects.py")
-
-# Rigid parts are closed to 3.0 rad, near the end of the servo's travel (π) and past full finger
-# closure (≈ 2.3 rad), so the servo stalls on the part and squeezes with its stall torque, as a
-# hobby servo commanded past an obstacle does. At 2.2 rad the cylinder slipped out in the shake.
+# The rigid objects' closing command: near the end of the servo's travel (π) and past full finger
+# closure (≈ 2.3 rad), so the servo stalls on the part and squeezes with its stall torque
+# (gripper/data/objects/block.toml gives the reason); user meshes default to it.
 RIGID_CLOSE = 3.0
 
-# Block: a rigid 40 × 40 × 60 mm part of 60 g (a PLA print at ~20 % infill: 96 cm³ × 1.24
-# g/cm³ × ~0.5 effective fill). Silicone on PLA μ ≈ 0.6 (silicone on smooth plastics 0.5-0.8).
-# Rigid parts take the servo's stall: their damage measure is the peak total contact force, with a
-# limit (200 N) above what four 54 N cables press through fingers closed on their cut stops
-# (peak totals up to 100 N in the 50-trial benchmark of 0.5.0, block and cylinder); a plastic part
-# of this size fails at kilonewtons.
-BLOCK = GraspObject(
-    name="block", kind="rigid_box", size=(0.020, 0.020, 0.030), mass=0.060, friction=0.6,
-    yaw_symmetric=False, close_command=RIGID_CLOSE, damage_limit=200.0,
-    damage_measure="peak total contact force [N]")
+# The bag's film mass and the rigid pack inside it (gripper/data/objects/bag.toml: 3 g of film,
+# a 36 × 36 × 44 mm pack of 80 g).
+BAG_FILM_MASS = 0.003  # kg
+BAG_CONTENTS_HALF = (0.018, 0.018, 0.022)  # m
 
-# Cylinder: a rigid Ø 50 × 70 mm cylinder, 80 g (a plastic pill bottle with contents).
-CYLINDER = GraspObject(
-    name="cylinder", kind="rigid_cylinder", size=(0.025, 0.025, 0.035), mass=0.080, friction=0.6,
-    yaw_symmetric=True, close_command=RIGID_CLOSE, damage_limit=200.0,
-    damage_measure="peak total contact force [N]")
-
-# Paper box: a 40 × 40 × 60 mm box of ≈ 170 g/m² card (≈ 0.2 mm thick, in-plane modulus
-# ≈ 3 GPa; paperboard 2-6 GPa), lid closed; 20 g total (card ≈ 3 g plus light contents, lumped
-# on the shell's vertices).
-# Card is ideal-elastoplastic with one yield strain, 0.5 %, in stretching and in bending (the
-# same fibres yield whichever way they are strained). Paperboard's stress-strain curve leaves
-# linearity at 0.3-0.5 % strain and hardens to failure at 1.5-2 % in the machine direction
-# (typical tensile curves, e.g. K. Niskanen (ed.), Paper Physics, 2008); with no hardening in
-# the model, the yield sits at the top of that range. In-plane yield is what lets a finger dent
-# a panel: pushed in by w over a half-span a, a panel stretches by about (w/a)^2/2, 0.5 % at
-# w = 2 mm on a 40 mm face, while its bending strain stays small. Damage = a permanent dent
-# deeper than 2 mm (a dent a customer sees on a retail box), measured after elastic
-# spring-back (see trial.permanent_dent).
-# Closing command 1.43 rad of spool (package 0.6.0, calibrated springs): 1.3 rad, chosen on the
-# stiff 0.5.x springs, left the softer calibrated fingers resting on the box (median peak
-# force 1 N, 1 of 11 held, seed 0); 1.43 rad held 10 of 10 undented (12-15 N, two yawed
-# placements 120-128 N) while 1.625 and 1.95 rad dented 2 of 10 (2.0-2.6 mm). Chosen on seed 0,
-# verified on seed 1 (docs/calibration.md).
-PAPER_BOX_CLOSE = 1.43
-PAPER_BOX = GraspObject(
-    name="paper_box", kind="paper_box", size=(0.020, 0.020, 0.030), mass=0.020, friction=0.8,
-    yaw_symmetric=False, close_command=PAPER_BOX_CLOSE, damage_limit=0.002,
-    damage_measure="permanent dent depth after spring-back [m]",
-    youngs_modulus=3.0e9, thickness=2.0e-4, yield_strain=0.005,
-    notes="silicone on card μ ≈ 0.8")
-
-# Bag: a 50 µm low-density polyethylene storage bag (E ≈ 200 MPa, LDPE 100-300 MPa), Ø 52 ×
-# 70 mm sack, open at the top (flexcomp's open-top cylinder shell), film mass 3 g (50 µm ×
-# 0.0135 m² × 920 kg/m³ ≈ 0.6 g, plus seams and zipper), holding a rigid 36 × 36 × 44 mm
-# pack of 80 g; the fingers grasp the pack through the film. Damage = film tear: an edge of the
-# film stretching beyond 10 % (LDPE yields at 10-15 % strain and necks beyond).
-# Closing command 1.5 rad of spool: with the pack touching the film as stiffly as the fingers do
-# (see _add_bag), the earlier 1.8 rad tore 3 of 50 films (strain 0.109-0.120, seed 0), while 1.5
-# rad held 50 of 50 with no tear (film strain median 0.036, highest 0.096; about 120 N in all;
-# 1.53 rad gave the same picture). Chosen on seed 0, the seed of the README's table.
-BAG = GraspObject(
-    name="bag", kind="bag", size=(0.026, 0.026, 0.035), mass=0.083, friction=0.6,
-    yaw_symmetric=False, close_command=1.5, damage_limit=0.10,
-    damage_measure="peak film edge strain [-] (tear above the limit)",
-    youngs_modulus=2.0e8, thickness=5.0e-5,
-    notes="film 3 g + contents 80 g; silicone on polyethylene μ ≈ 0.6")
-
-BAG_FILM_MASS = 0.003  # kg, see BAG
-BAG_CONTENTS_HALF = (0.018, 0.018, 0.022)  # m, the rigid pack inside the bag
-
-LIBRARY: dict[str, GraspObject] = {o.name: o for o in (BALLOON, BLOCK, CYLINDER, PAPER_BOX, BAG)}
-DEFAULT_OBJECTS = tuple(LIBRARY)
+DEFAULT_OBJECTS = ("balloon", "block", "cylinder", "paper_box", "bag")
 
 
-def get_object(name: str) -> GraspObject:
-    """The library object ``name``, or a user mesh given as ``mesh:PATH[:MASS_KG]``.
+def _library() -> dict[str, GraspObject]:
+    from gripper.objects.files import load_object_file
+
+    return {name: load_object_file(OBJECTS_DIR / f"{name}.toml") for name in DEFAULT_OBJECTS}
+
+
+LIBRARY: dict[str, GraspObject] = {}  # filled on first use (the object files are package data)
+
+
+def library() -> dict[str, GraspObject]:
+    """The built-in objects, read once from their object files in ``gripper/data/objects``."""
+    if not LIBRARY:
+        LIBRARY.update(_library())
+    return LIBRARY
+
+
+def get_object(spec: str) -> GraspObject:
+    """The object ``spec`` names: a built-in name, an object file (``.toml`` or ``.json``), or a
+    user mesh as ``mesh:PATH`` or ``mesh:PATH::MASS_KG``. Records name the object by
+    :attr:`GraspObject.name`: the built-in's name, the file's ``object.name``, or the ``mesh:``
+    spec exactly as given.
 
     Raises:
-        ValueError: unknown name (lists the allowed ones) or a bad mesh.
+        ValueError: unknown name (lists the allowed ones), a bad file or a bad mesh.
     """
-    if name.startswith("mesh:"):
-        rest = name[len("mesh:"):]
-        path, _, mass = rest.partition("::") if "::" in rest else (rest, "", "")
-        return mesh_object(path, mass=float(mass) if mass else None)
-    if name not in LIBRARY:
-        raise ValueError(f"objects: unknown object {name!r}; allowed: {', '.join(LIBRARY)} "
-                         "or mesh:PATH")
-    return LIBRARY[name]
+    if not isinstance(spec, str) or not spec:
+        raise ValueError(f"objects: expected an object name, file or mesh:PATH, got {spec!r}")
+    if spec.startswith("mesh:"):
+        rest = spec[len("mesh:"):]
+        path, sep, mass_text = rest.partition("::")
+        mass = None
+        if sep:
+            try:
+                mass = float(mass_text)
+            except ValueError:
+                raise ValueError(f"objects: {spec}: the mass after '::' must be a number in kg, "
+                                 f"got {mass_text!r}") from None
+        return dataclasses.replace(mesh_object(path, mass=mass), name=spec).validate()
+    if spec.endswith((".toml", ".json")):
+        from gripper.objects.files import load_object_file
+
+        return load_object_file(spec)
+    lib = library()
+    if spec not in lib:
+        raise ValueError(f"objects: unknown object {spec!r}; allowed: {', '.join(lib)}, an object "
+                         "file (.toml or .json) or mesh:PATH[::MASS]")
+    return lib[spec]
 
 
 # --- user meshes ---------------------------------------------------------------------------
@@ -263,21 +260,33 @@ def load_mesh(path: str | Path, *, repair: bool = True):
     return mesh
 
 
-def mesh_object(path: str | Path, *, mass: float | None = None, friction: float = 0.6,
-                close_command: float = RIGID_CLOSE) -> GraspObject:
+def mesh_object(path: str | Path, *, mass: float | None = None, density: float | None = None,
+                friction: float = 0.6, close_command: float = RIGID_CLOSE, damage: str = "contact_force",
+                damage_limit: float = 200.0, yaw_symmetric: bool = False, name: str | None = None,
+                reasons: tuple[tuple[str, str], ...] = ()) -> GraspObject:
     """A rigid object from a user mesh (metres), centred on its bounding box, base on the floor.
 
-    Mass from ``mass`` or from :data:`DEFAULT_MESH_DENSITY` × volume; inertia from the mesh
-    (MuJoCo computes it from the same triangles); collision from its convex hull.
+    Mass from ``mass``, else ``density`` (default :data:`DEFAULT_MESH_DENSITY`) × the mesh's
+    volume; inertia from the mesh (MuJoCo computes it from the same triangles); collision from
+    its convex hull. The footprint checked against the aperture is the hull's horizontal radius
+    about the centre. The defaults of the ``mesh:PATH`` shortcut (friction 0.6, a 200 N contact
+    force limit, full closing) are the block's; an object file declares its own.
     """
     mesh = load_mesh(path)
     lo, hi = mesh.bounds
     hx, hy, hz = (float(v) for v in 0.5 * (hi - lo))
-    half = (hx, hy, hz)
-    m = float(mass) if mass is not None else DEFAULT_MESH_DENSITY * float(mesh.volume)
-    obj = GraspObject(name=f"mesh:{path}", kind="mesh", size=half, mass=m, friction=friction,
-                      yaw_symmetric=False, close_command=close_command, damage_limit=200.0,
-                      damage_measure="peak total contact force [N]", mesh_file=str(path))
+    centre = 0.5 * (lo + hi)
+    hull = mesh.convex_hull.vertices - centre
+    footprint = float(max(math.hypot(x, y) for x, y in hull[:, :2]))
+    if mass is None:
+        rho = DEFAULT_MESH_DENSITY if density is None else density
+        if isinstance(rho, bool) or not (isinstance(rho, int | float) and math.isfinite(rho) and rho > 0):
+            raise ValueError(f"mesh: density must be > 0 kg/m³, got {rho!r}")
+        mass = rho * float(mesh.volume)
+    obj = GraspObject(name=name or f"mesh:{path}", kind="mesh", size=(hx, hy, hz), mass=mass,
+                      friction=friction, yaw_symmetric=yaw_symmetric, close_command=close_command,
+                      damage=damage, damage_limit=damage_limit, mesh_file=str(path),
+                      footprint_radius=footprint, reasons=reasons)
     return obj.validate()
 
 

@@ -63,7 +63,7 @@ PROBE_TIMEOUT_S = 20.0
 def defer_gl_backend() -> None:
     """Keep MuJoCo from loading an OpenGL backend until something renders (see the module
     docstring); a ``MUJOCO_GL`` the user set is kept."""
-    if "MUJOCO_GL" not in os.environ:
+    if not os.environ.get("MUJOCO_GL"):  # unset or empty: MuJoCo's default would be GLFW
         os.environ["MUJOCO_GL"] = "disable"
         os.environ[DEFERRED] = "1"
 

@@ -1,0 +1,170 @@
+"""Object files, every object spec form through a benchmark and its rerun, declared damage
+limits, mesh repair and sizing by the real footprint."""
+
+from __future__ import annotations
+
+import json
+import warnings
+
+import numpy as np
+import pytest
+import trimesh
+
+from gripper.bench.benchmark import BenchConfig, read_trials, run_benchmark
+from gripper.core.resources import OBJECTS_DIR
+from gripper.experiments.protocol import GraspProtocol
+from gripper.experiments.trial import run_trial
+from gripper.objects.files import load_object_file
+from gripper.objects.library import APERTURE_RADIUS, get_object, mesh_object
+
+SHORT = GraspProtocol(hold_s=0.2, shake_s=0.2)
+
+
+def _box_stl(path, half=(0.020, 0.020, 0.030)):  # the block's size: the fingers close on it
+    trimesh.creation.box(extents=[2 * h for h in half]).export(path)
+    return path
+
+
+def _write(path, text):
+    path.write_text(text)
+    return path
+
+
+@pytest.fixture
+def user_files(tmp_path):
+    stl = _box_stl(tmp_path / "part.stl")
+    part = _write(tmp_path / "part.toml", """
+[object]
+name = "fragile_part"
+kind = "mesh"
+mesh = "part.stl"
+mass = 0.060
+friction = 0.7
+[damage]
+criterion = "contact_force"
+limit = 30.0
+[reasons]
+limit = "a thin-walled print cracks at about 30 N"
+""")
+    return stl, part
+
+
+def test_the_built_in_objects_are_object_files():
+    for name in ("balloon", "block", "cylinder", "paper_box", "bag"):
+        assert load_object_file(OBJECTS_DIR / f"{name}.toml") == get_object(name)
+    assert dict(get_object("block").reasons)["friction"].startswith("silicone on PLA")
+
+
+def test_every_spec_form_runs_a_benchmark_and_its_rerun(tmp_path, user_files):
+    stl, part = user_files
+    specs = ("block", str(part), f"mesh:{stl}", f"mesh:{stl}::0.05")
+    cfg = BenchConfig(objects=specs, trials=1, protocol=SHORT).validate()
+    out = tmp_path / "run"
+    first = run_benchmark(cfg, out, workers=1, progress=False)
+    assert set(first["objects"]) == {"block", "fragile_part", f"mesh:{stl}", f"mesh:{stl}::0.05"}
+    again = run_benchmark(cfg, out, workers=1, progress=False)  # nothing left to run
+    assert again["objects"] == first["objects"]
+    longer = run_benchmark(BenchConfig(objects=specs, trials=2, protocol=SHORT).validate(), out,
+                           workers=1, progress=False)
+    recs = read_trials(out / "trials.jsonl")
+    keys = [(r.object, r.index) for r in recs]
+    assert len(keys) == len(set(keys)) == 8, keys  # no duplicates
+    assert keys == [(n, i) for n in cfg.names() for i in range(2)], "trial order kept on extension"
+    assert all(longer["objects"][n]["trials"] == 2 for n in cfg.names())
+    masses = {r.object: r for r in recs}
+    assert masses[f"mesh:{stl}::0.05"]["config_hash"] != masses[f"mesh:{stl}"]["config_hash"]
+    for line in (out / "trials.jsonl").read_text().splitlines():  # records round-trip exactly
+        rec = json.loads(line)
+        assert json.loads(json.dumps(read_trials.__globals__["TrialRecord"].from_dict(rec).to_dict())) == rec
+
+
+def test_a_declared_force_limit_is_reported_as_damage(user_files):
+    _, part = user_files
+    rec = run_trial(str(part), 0, 0, protocol=SHORT)
+    assert rec.status == "ok"
+    assert rec.peak_total_force_N > 30.0, "the stalled servos press harder than the part's limit"
+    assert rec.damaged and rec.failed_phase == "damage" and not rec.success
+    assert rec.damage_limit == 30.0
+
+
+def test_an_object_without_a_damage_criterion_is_never_damaged(tmp_path):
+    f = _write(tmp_path / "tough.toml", """
+[object]
+name = "tough"
+kind = "rigid_box"
+size = [0.02, 0.02, 0.03]
+density = 1240.0
+friction = 0.6
+[damage]
+criterion = "none"
+""")
+    obj = load_object_file(f)
+    assert obj.mass == pytest.approx(1240.0 * 0.04 * 0.04 * 0.06)
+    assert not obj.is_damaged(1e6)
+
+
+def test_a_repairable_mesh_runs_and_a_hopeless_one_is_refused(tmp_path):
+    box = trimesh.creation.box(extents=[0.04, 0.04, 0.06])
+    holed = trimesh.Trimesh(box.vertices, box.faces[1:], process=False)  # one triangle missing
+    assert not holed.is_watertight
+    holed.export(tmp_path / "holed.stl")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        rec = run_trial(f"mesh:{tmp_path / 'holed.stl'}", 0, 0, protocol=SHORT)
+    assert rec.status == "ok" and rec.success
+    assert any("not watertight" in str(w.message) for w in caught)
+    sheet = trimesh.Trimesh([[0, 0, 0], [0.03, 0, 0], [0, 0.03, 0], [0.03, 0.03, 0.001]],
+                            [[0, 1, 2], [1, 3, 2]], process=False)  # an open sheet: no volume to close
+    sheet.export(tmp_path / "sheet.stl")
+    with pytest.raises(ValueError, match="not watertight"):
+        mesh_object(tmp_path / "sheet.stl")
+
+
+def test_a_round_mesh_is_sized_by_its_footprint_not_its_bounding_box(tmp_path):
+    r = 0.034  # bounding-box half-diagonal 48 mm > the 40 mm aperture, footprint radius 34 mm
+    trimesh.creation.cylinder(radius=r, height=0.05, sections=48).export(tmp_path / "round.stl")
+    obj = mesh_object(tmp_path / "round.stl")
+    assert np.hypot(obj.size[0], obj.size[1]) > APERTURE_RADIUS
+    assert obj.half_width == pytest.approx(r, rel=1e-3)
+    _box_stl(tmp_path / "wide.stl", half=(0.035, 0.035, 0.02))
+    with pytest.raises(ValueError, match=r"0\.049 m over all yaws; the open fingers leave 0\.040 m"):
+        mesh_object(tmp_path / "wide.stl")
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02,0.03]\nmass=0.1\n", "object.friction: missing"),
+    ("[object]\nname='x'\nkind='jelly'\n", "object.kind: must be one of"),
+    ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02]\nmass=0.1\nfriction=1\n", "object.size: must be three"),
+    ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\n[damage]\ncriterion='dent'\n",
+     "damage.criterion: a rigid_box allows contact_force, none"),
+    ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\ncolour='red'\n",
+     "object.colour: unknown key"),
+    ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\n",
+     "damage.criterion: missing: declare how the object is damaged"),
+    ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\n[damage]\ncriterion='contact_force'\n",
+     "damage.limit: missing"),
+    ("[object]\nname='x'\nkind='mesh'\nmesh='nowhere.stl'\nfriction=1\n[damage]\ncriterion='none'\n",
+     "object.mesh: mesh: file not found"),
+    ("[object\n", "not valid TOML"),
+])
+def test_a_bad_object_file_names_the_file_and_the_key(tmp_path, text, message):
+    f = _write(tmp_path / "bad.toml", text)
+    with pytest.raises(ValueError, match=message) as err:
+        load_object_file(f)
+    assert str(err.value).startswith(f"object file {f}:") and "\n" not in str(err.value)
+
+
+def test_a_bad_mass_in_the_shortcut_names_the_field(tmp_path):
+    stl = _box_stl(tmp_path / "p.stl")
+    with pytest.raises(ValueError, match=r"the mass after '::' must be a number in kg, got 'abc'"):
+        get_object(f"mesh:{stl}::abc")
+
+
+def test_a_corrupt_record_line_is_named(tmp_path):
+    out = tmp_path / "run"
+    cfg = BenchConfig(objects=("block",), trials=1, protocol=SHORT).validate()
+    run_benchmark(cfg, out, workers=1, progress=False)
+    path = out / "trials.jsonl"
+    path.write_text(path.read_text() + "{not json\n")
+    with pytest.raises(ValueError, match=r"trials.jsonl: line 2 is not a JSON record"):
+        run_benchmark(cfg, out, workers=1, progress=False)
