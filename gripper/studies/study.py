@@ -258,10 +258,15 @@ def load_study(path: str | Path) -> Study:
     for section in data:
         if section not in ("study", "vary", "responses", "objective"):
             raise err(section, "unknown section; allowed: study, vary, responses, objective")
+        if not isinstance(data[section], dict):
+            raise err(section, f"must be a table ([{section}]), got {data[section]!r}")
     st = data.get("study", {})
     for k in st:
         if k not in ("name", "base", "design", "points", "seed"):
             raise err(k, "unknown key in [study]; allowed: name, base, design, points, seed")
+    for k in ("name", "base", "design"):
+        if k in st and not isinstance(st[k], str):
+            raise err(k, f"must be text, got {st[k]!r}")
     design = st.get("design", "one_at_a_time")
     if design not in DESIGNS:
         raise err("design", f"must be one of {', '.join(DESIGNS)}, got {design!r}")
