@@ -15,6 +15,7 @@ from __future__ import annotations
 import json
 import os
 import socket
+import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from urllib.parse import urlsplit
@@ -27,6 +28,9 @@ def read_jsonl(path: Path) -> list[dict]:
     raw = path.read_bytes()
     keep = raw[: raw.rfind(b"\n") + 1]
     if len(keep) != len(raw):
+        torn = keep.count(b"\n") + 1
+        print(f"{path}: line {torn} was incomplete (a run stopped while writing it); dropped, "
+              "its trial runs again", file=sys.stderr)
         with open(path, "r+b") as f:
             f.truncate(len(keep))
     out = []

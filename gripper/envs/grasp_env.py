@@ -357,8 +357,8 @@ def restore_episode(scenes: SceneSet, st: dict) -> EpisodeState:
     import mujoco
 
     from gripper.envs.core import Scene, load_state
-    from gripper.objects.library import Placement, get_object
-    obj = get_object(st["object"])
+    from gripper.objects.library import Placement
+    obj = next(o for o in scenes.objects if o.name == st["object"])  # any spec form: by its name
     place = Placement(**st["placement"])
     scene = Scene(scenes.cfg, obj, place) if obj.is_flex else scenes._rigid[obj.name]
     if not obj.is_flex:

@@ -376,8 +376,11 @@ def metric_names(responses: dict) -> list[str]:
     if "blocked_force" in responses:
         names += ["blocked_tip_force_N"]
     if "grasp" in responses:
+        from gripper.objects.library import get_object
+
         for o in responses["grasp"].get("objects", ["block"]):
-            names += [f"grasp_{o}_success_rate", f"grasp_{o}_median_peak_force_N"]
+            name = get_object(o).name  # an object file's own name, not its path
+            names += [f"grasp_{name}_success_rate", f"grasp_{name}_median_peak_force_N"]
     return names
 
 
@@ -462,8 +465,9 @@ def run_point(study: Study, index: int, changes: dict) -> dict:
         if "grasp" in resp:
             from gripper.experiments.trial import run_trial
             g = resp["grasp"]
-            for o in g.get("objects", ["block"]):
-                recs = [run_trial(o, study.seed, i, params=p) for i in range(int(g.get("trials", 5)))]
+            for spec in g.get("objects", ["block"]):
+                recs = [run_trial(spec, study.seed, i, params=p) for i in range(int(g.get("trials", 5)))]
+                o = recs[0].object
                 ok = [r for r in recs if r["status"] == "ok"]
                 met[f"grasp_{o}_success_rate"] = (sum(bool(r["success"]) for r in ok) / len(ok)) if ok else None
                 met[f"grasp_{o}_median_peak_force_N"] = float(np.median([r["peak_total_force_N"] for r in recs]))
