@@ -168,3 +168,21 @@ def test_a_corrupt_record_line_is_named(tmp_path):
     path.write_text(path.read_text() + "{not json\n")
     with pytest.raises(ValueError, match=r"trials.jsonl: line 2 is not a JSON record"):
         run_benchmark(cfg, out, workers=1, progress=False)
+
+
+def test_the_environment_takes_an_object_file(user_files):
+    import pickle
+
+    import gymnasium as gym
+
+    _, part = user_files
+    env = gym.make("gripper:SoftGripperGrasp-v1", objects=f"block,{part}")
+    env.reset(seed=1)
+    names = set()
+    for seed in range(4):
+        _, info = env.reset(seed=seed)
+        names.add(info["object"])
+    _, _, _, _, info = env.step(env.action_space.sample())
+    assert names <= {"block", "fragile_part"} and "fragile_part" in names | {info["object"]}
+    clone = pickle.loads(pickle.dumps(env.unwrapped))
+    assert clone._ep.scene.obj.name == env.unwrapped._ep.scene.obj.name

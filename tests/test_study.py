@@ -177,3 +177,11 @@ def test_a_shipped_study_loads_by_name():
     from gripper.core.resources import STUDIES_DIR
 
     assert load_study("one_at_a_time") == load_study(STUDIES_DIR / "one_at_a_time.toml")
+
+
+def test_an_objective_error_names_its_line(tmp_path):
+    f = tmp_path / "s.toml"
+    f.write_text('[study]\nname = "s"\n[vary]\n"finger.cut_angle_deg" = [40.0]\n[responses]\n'
+                 'bending = { r_max = 0.4 }\n[objective]\nminimize = "nonsense"\n')
+    with pytest.raises(ValueError, match=r"s\.toml:8: objective\.minimize: unknown metric 'nonsense'"):
+        load_study(f)

@@ -146,12 +146,16 @@ def _get(p: GripperParams, dotted: str):
 
 
 def _key_line(text: str, key: str) -> int:
-    """Line number of ``key`` in the TOML text (for error messages); 0 if not found."""
-    pat = re.compile(r'^\s*"?' + re.escape(key) + r'"?\s*=')
-    for i, line in enumerate(text.splitlines(), 1):
-        if pat.match(line):
-            return i
-    return 0
+    """Line number of ``key`` in the TOML text (for error messages): the line that sets it (the
+    last part of a dotted key), else its section's header; 0 if neither is found."""
+    lines = text.splitlines()
+    for k in dict.fromkeys((key, key.split(".")[-1])):
+        pat = re.compile(r'^\s*"?' + re.escape(k) + r'"?\s*=')
+        for i, line in enumerate(lines, 1):
+            if pat.match(line):
+                return i
+    header = re.compile(r"^\s*\[\s*" + re.escape(key.split(".")[0]) + r"\s*\]")
+    return next((i for i, line in enumerate(lines, 1) if header.match(line)), 0)
 
 
 def apply_point(base: GripperParams, changes: dict) -> tuple[GripperParams, list[str]]:
@@ -363,7 +367,8 @@ def load_study(path: str | Path) -> Study:
             key = next(iter(pt)) if pt else "base"
             raise err(key, f"value {pt.get(key)!r} gives an invalid design ({e})") from None
     if objective is not None and objective[1] not in metric_names(responses):
-        raise err("objective", f"unknown metric {objective[1]!r}; available: {', '.join(metric_names(responses))}")
+        raise err(f"objective.{objective[0]}",
+                  f"unknown metric {objective[1]!r}; available: {', '.join(metric_names(responses))}")
     return study
 
 
