@@ -220,6 +220,8 @@ class SoftGripperGraspEnv(gym.Env):
       no longer registered.
     - v1, package 0.7.0: unchanged (the package was layered); seeded episodes are bitwise
       those of 0.6.0 (``scripts/fingerprint.py``).
+    - v1, package 0.8.0: unchanged (object files, hardened inputs); seeded episodes are bitwise
+      those of 0.7.0. Objects may be object files; ``info["object"]`` is the object's name.
 
     Example:
         >>> import gymnasium as gym
