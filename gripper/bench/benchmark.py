@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
-from gripper.bench.execution import check_scheduler, claim_run_dir, read_jsonl, run_ordered
+from gripper.bench.execution import open_run, read_jsonl, run_ordered
 from gripper.core.atomic import write_atomic
 from gripper.core.fields import Validated
 from gripper.core.hashing import stable_hash
@@ -135,11 +135,8 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
         ValueError: bad configuration, or ``out`` holds a different configuration.
     """
     cfg.validate()
-    if not isinstance(workers, int) or workers < 1:
-        raise ValueError(f"workers: must be an integer >= 1, got {workers!r}")
-    out = Path(out)
-    check_scheduler(scheduler)  # before the folder exists: a refused run leaves nothing
-    claim_run_dir(out, "config.json", "config", cfg.hash(), cfg.identity(), "a run with another configuration")
+    out = open_run(out, workers, scheduler, "config.json", "config", cfg.hash(), cfg.identity(),
+                   "a run with another configuration")
     tpath = out / "trials.jsonl"
     done: dict[tuple[str, int], Mapping] = {}
     for r in read_trials(tpath):

@@ -73,6 +73,18 @@ def check_scheduler(address: str | None, timeout: float = SCHEDULER_TIMEOUT_S) -
                          "one with 'dask scheduler', or leave --scheduler out for a local cluster") from None
 
 
+def open_run(out: str | Path, workers: int, scheduler: str | None, filename: str, key: str, h: str,
+             payload: dict, what: str) -> Path:
+    """Check the worker count and the scheduler, then claim ``out`` (:func:`claim_run_dir`):
+    a refused run leaves no folder behind. Returns ``out`` as a path."""
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise ValueError(f"--workers: must be an integer >= 1, got {workers!r}")
+    check_scheduler(scheduler)
+    out = Path(out)
+    claim_run_dir(out, filename, key, h, payload, what)
+    return out
+
+
 def claim_run_dir(out: Path, filename: str, key: str, h: str, payload: dict, what: str) -> None:
     """Create ``out`` and record the run's identity in ``out/filename`` ({key}_hash, {key},
     versions); an existing record with another hash is refused (ValueError naming ``--out``)."""

@@ -487,13 +487,10 @@ def run_point(study: Study, index: int, changes: dict) -> dict:
 def run_study(study: Study, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
               progress: bool = True) -> list[dict]:
     """Run (or resume) the study into ``out``; write the table, plots and recommendations."""
-    from gripper.bench.execution import check_scheduler, claim_run_dir, read_jsonl, run_ordered
+    from gripper.bench.execution import open_run, read_jsonl, run_ordered
 
-    if not isinstance(workers, int) or workers < 1:
-        raise ValueError(f"--workers: must be an integer >= 1, got {workers!r}")
-    out = Path(out)
-    check_scheduler(scheduler)  # before the folder exists: a refused run leaves nothing
-    claim_run_dir(out, "study.json", "study", study.hash(), study.identity(), "another study")
+    out = open_run(out, workers, scheduler, "study.json", "study", study.hash(), study.identity(),
+                   "another study")
     path = out / "results.jsonl"
     points = study.design_points()
     done = {r["point"]: r for r in read_jsonl(path)}
