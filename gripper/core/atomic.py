@@ -70,8 +70,10 @@ def check_output_file(path: str | Path, flag: str, suffixes: tuple[str, ...] = (
     if out.is_dir():
         raise ValueError(f"{flag}: {out} is a folder; give a file name")
     folder = out.parent if str(out.parent) else Path(".")
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"{flag}: cannot write {out}: {folder} is a file, not a folder")
     if not folder.is_dir():
-        raise ValueError(f"{flag}: folder {folder} does not exist")
+        raise ValueError(f"{flag}: folder {folder} does not exist; create it first")
     if not os.access(folder, os.W_OK | os.X_OK) or (out.exists() and not os.access(out, os.W_OK)):
         raise ValueError(f"{flag}: cannot write {out}: permission denied")
     return out
