@@ -75,3 +75,17 @@ def test_a_closed_pipe_ends_quietly():
     done = subprocess.run(["bash", "-c", cmd], capture_output=True, text=True, timeout=120)
     assert done.stdout.startswith("bending test"), done.stdout
     assert done.stderr == "", done.stderr
+
+
+def test_a_failed_calibration_leaves_no_folder(tmp_path, monkeypatch):
+    import gripper.calibration.pipeline as pipeline
+    from gripper.core.resources import CALIBRATION_EXAMPLES_DIR
+
+    def broken(*a, **k):
+        raise ValueError("fit: stand-in failure")
+
+    monkeypatch.setattr(pipeline, "fit_hinges", broken)
+    out = tmp_path / "a" / "b" / "cal"
+    with pytest.raises(ValueError, match="stand-in failure"):
+        pipeline.calibrate(out, data=CALIBRATION_EXAMPLES_DIR / "example_bench.csv")
+    assert list(tmp_path.iterdir()) == []
