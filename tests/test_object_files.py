@@ -127,7 +127,8 @@ def test_a_round_mesh_is_sized_by_its_footprint_not_its_bounding_box(tmp_path):
     assert np.hypot(obj.size[0], obj.size[1]) > APERTURE_RADIUS
     assert obj.half_width == pytest.approx(r, rel=1e-3)
     _box_stl(tmp_path / "wide.stl", half=(0.035, 0.035, 0.02))
-    with pytest.raises(ValueError, match=r"0\.049 m over all yaws; the open fingers leave 0\.040 m"):
+    with pytest.raises(ValueError, match=r"0\.049 m over all yaws; the open fingers of the default design "
+                                         r"leave 0\.040 m"):
         mesh_object(tmp_path / "wide.stl")
 
 

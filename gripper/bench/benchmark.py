@@ -111,10 +111,11 @@ class BenchConfig(Validated):
         return [(name, i) for name in self.names() for i in range(self.trials)]
 
 
-def _run_one(cfg: BenchConfig, obj: str, index: int) -> dict:
-    """One trial of object spec ``obj``, as the JSON record the run's file holds."""
+def _run_one(cfg: BenchConfig, obj: str, index: int, run_hash: str) -> dict:
+    """One trial of object spec ``obj``, as the JSON record the run's file holds (``run_hash``:
+    the run's configuration hash, computed once per run)."""
     rec = run_trial(obj, cfg.seed, index, params=cfg.params, protocol=cfg.protocol, noise=cfg.noise)
-    return dataclasses.replace(rec, run_config_hash=cfg.hash()).to_dict()
+    return dataclasses.replace(rec, run_config_hash=run_hash).to_dict()
 
 
 def _trial_key(rec: Mapping) -> tuple[str, int]:
@@ -135,7 +136,8 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
         ValueError: bad configuration, or ``out`` holds a different configuration.
     """
     cfg.validate()
-    out = open_run(out, workers, scheduler, "config.json", "config", cfg.hash(), cfg.identity(),
+    run_hash = cfg.hash()
+    out = open_run(out, workers, scheduler, "config.json", "config", run_hash, cfg.identity(),
                    "a run with another configuration")
     tpath = out / "trials.jsonl"
     done: dict[tuple[str, int], Mapping] = {}
@@ -145,7 +147,7 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
     spec = dict(zip(cfg.names(), cfg.objects, strict=True))
     todo = [j for j in jobs if j not in done]
     t0 = time.perf_counter()
-    run_ordered([(cfg, spec[name], i) for name, i in todo], _run_one, tpath, workers=workers,
+    run_ordered([(cfg, spec[name], i, run_hash) for name, i in todo], _run_one, tpath, workers=workers,
                 scheduler=scheduler, on_record=lambda rec: done.__setitem__(_trial_key(rec), rec),
                 progress=(len(jobs), len(jobs) - len(todo), "grasp trials") if progress else None)
     _keep_trial_order(tpath, jobs)

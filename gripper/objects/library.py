@@ -110,7 +110,7 @@ class GraspObject(Validated):
         mesh hull's footprint radius, the box's half-diagonal (its corners sweep a circle when
         yaw is sampled), or the round objects' radius."""
         if self.kind == "mesh" and self.footprint_radius > 0:
-            return self.footprint_radius if not self.yaw_symmetric else max(self.size[0], self.size[1])
+            return self.footprint_radius
         if self.kind in ("rigid_box", "paper_box", "mesh") and not self.yaw_symmetric:
             return math.hypot(self.size[0], self.size[1])
         return max(self.size[0], self.size[1])
@@ -150,8 +150,8 @@ class GraspObject(Validated):
             what = "hull footprint radius" if self.kind == "mesh" and self.footprint_radius > 0 else \
                 "horizontal half-extent"
             raise ValueError(f"{where}.size: its {what} is {self.half_width:.3f} m over all yaws; the open "
-                             f"fingers leave {APERTURE_RADIUS:.3f} m (layout.palm_radius): scale the object "
-                             "down, or declare it yaw_symmetric if it is round")
+                             f"fingers of the default design leave {APERTURE_RADIUS:.3f} m: scale the object "
+                             "down (a round part: declare it yaw_symmetric, so its radius counts)")
         return self
 
     def to_dict(self) -> dict:
