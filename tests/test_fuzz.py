@@ -184,7 +184,8 @@ arg_values = st.one_of(st.sampled_from(["block", "balloon,block", "mesh:nowhere.
 
 @FUZZ
 @given(command=st.sampled_from(sorted(FLAGS)), data=st.data())
-def test_command_line(stand_ins, tmp_path, command, data, capsys):
+def test_command_line(stand_ins, tmp_path, command, data, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # relative output names land in the test's folder
     flags = data.draw(st.lists(st.sampled_from(FLAGS[command]), max_size=4, unique=True))
     argv = [command]
     if command == "study":
