@@ -33,6 +33,7 @@ import statistics
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -47,7 +48,7 @@ from gripper.core.provenance import versions
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
 from gripper.experiments.trial import run_trial
-from gripper.objects.library import DEFAULT_OBJECTS, get_object
+from gripper.objects.library import DEFAULT_OBJECTS, GraspObject, get_object
 
 
 def wilson_interval(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:
@@ -94,7 +95,7 @@ class BenchConfig(Validated):
         so its records must not be mixed into an old run's folder."""
         return {"params": self.params.to_dict(), "protocol": self.protocol.to_dict(),
                 "noise": self.noise.to_dict(), "seed": self.seed,
-                "objects": {o: get_object(o).to_dict() for o in self.objects},
+                "objects": {o: obj.to_dict() for o, obj in self._resolved.items()},
                 "versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")}}
 
     def hash(self) -> str:
@@ -103,7 +104,13 @@ class BenchConfig(Validated):
     def names(self) -> tuple[str, ...]:
         """The objects' names as their records give them (:func:`get_object`): a built-in's
         name, an object file's ``object.name``, a ``mesh:`` spec exactly as given."""
-        return tuple(get_object(o).name for o in self.objects)
+        return tuple(obj.name for obj in self._resolved.values())
+
+    @cached_property
+    def _resolved(self) -> dict[str, GraspObject]:
+        """Each object spec resolved once per configuration (a mesh spec reads its file and its
+        hull; names, jobs, identity and the summary all need them)."""
+        return {o: get_object(o) for o in self.objects}
 
     def jobs(self) -> list[tuple[str, int]]:
         """(object name, index) in the order records are written: object by object, as listed,
