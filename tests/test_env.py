@@ -13,7 +13,7 @@ from gymnasium.utils.env_checker import check_env
 import gripper  # noqa: F401  (registers the environment)
 from gripper.envs.grasp_env import SoftGripperGraspEnv
 
-ENV_ID = "gripper:SoftGripperGrasp-v1"
+ENV_ID = "gripper:SoftGripperGrasp-v2"
 
 # Warnings check_env may raise, each with its reason:
 ALLOWED_WARNINGS = (
@@ -101,7 +101,7 @@ def test_sync_and_async_vector_envs_and_pickle():
         venv = gym.make_vec(ENV_ID, num_envs=2, vectorization_mode=mode, objects="block")
         obs, _ = venv.reset(seed=0)
         obs2, *_ = venv.step(venv.action_space.sample())
-        assert obs2.shape == (2, 84)
+        assert obs2.shape == (2, 96)
         venv.close()
     env = gym.make(ENV_ID, objects="block")
     env.reset(seed=1)

@@ -39,7 +39,9 @@ def test_the_json_form_round_trips_through_the_schema(record):
 def test_an_error_record_omits_the_outcome_and_keeps_the_reason(record):
     err = dataclasses.replace(record, status="error", success=None, failed_phase=None, error="nan at t=1",
                               lift_height_m=None, slip_m=None, max_slip_m=None, damaged=None,
-                              damage_measure=None, damage_limit=None, close_command_rad=None)
+                              damage_measure=None, damage_limit=None, close_command_rad=None,
+                              policy=None, servo_at_grasp=None, servo_at_hold_end=None, grip_tension_N=None,
+                              contact_time_s=None, grasp_time_s=None)
     d = err.to_dict()
     assert "lift_height_m" not in d and d["error"] == "nan at t=1"
     assert TrialRecord.from_dict(json.loads(json.dumps(d))) == err

@@ -23,8 +23,11 @@ def _stable(rec):
     return {k: v for k, v in rec.items() if k not in VOLATILE}
 
 
+PER_OBJECT = GraspProtocol(policy="per_object")
+
+
 def test_block_trial_succeeds_without_warnings():
-    rec = run_trial("block", seed=0, index=0)
+    rec = run_trial("block", seed=0, index=0, protocol=PER_OBJECT)
     assert rec["status"] == "ok" and rec["warnings"] == 0
     assert rec["success"], rec
     assert rec["lift_height_m"] >= GraspProtocol().success_height
@@ -100,8 +103,8 @@ def test_pullout_holding_force_exceeds_weight():
 
 def test_chunking_does_not_change_physics():
     """Rollout chunks carry the solver warm start: where the chunks are cut changes nothing."""
-    a = run_trial("block", seed=0, index=3, protocol=GraspProtocol(chunk_steps=10))
-    b = run_trial("block", seed=0, index=3, protocol=GraspProtocol(chunk_steps=7))
+    a = run_trial("block", seed=0, index=3, protocol=PER_OBJECT.replace(chunk_steps=10))
+    b = run_trial("block", seed=0, index=3, protocol=PER_OBJECT.replace(chunk_steps=7))
     for key in ("lift_height_m", "slip_m", "max_slip_m", "peak_cable_tension_N"):
         assert a[key] == b[key], key
 
@@ -117,8 +120,8 @@ def test_closing_much_harder_damages_deformable_objects(name, hard_scale, card):
     obj = get_object(name)
     if card is not None:
         obj = dataclasses.replace(obj, thickness=card)
-    soft = run_trial(obj, seed=0, index=0)
-    hard = run_trial(obj, seed=0, index=0, protocol=GraspProtocol(close_command_scale=hard_scale))
+    soft = run_trial(obj, seed=0, index=0, protocol=PER_OBJECT)
+    hard = run_trial(obj, seed=0, index=0, protocol=PER_OBJECT.replace(close_command_scale=hard_scale))
     assert soft["status"] == hard["status"] == "ok"
     assert soft["success"] and not soft["damaged"]
     assert soft["damage_measure"] < 0.5 * obj.damage_limit

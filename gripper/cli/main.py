@@ -23,6 +23,7 @@ from gripper.experiments.protocol import (
     CRUSH_DEPTH,
     CRUSH_HOLD_S,
     CRUSH_SPEED,
+    POLICIES,
     PULL_MAX,
     PULL_RATE,
     BendingConfig,
@@ -161,7 +162,8 @@ def _protocol_and_noise(args):
 
     if args.noise < 0:
         raise ValueError(f"--noise: must be >= 0 m, got {args.noise}")
-    proto = GraspProtocol(close_command_scale=args.close_scale, release=args.release).validate()
+    proto = GraspProtocol(close_command_scale=args.close_scale, release=args.release, policy=args.policy,
+                          grip_tension=args.grip_tension).validate()
     noise = TrialNoise(xy=args.noise, mass_frac=args.mass_noise, friction_frac=args.friction_noise).validate()
     return proto, noise
 
@@ -270,15 +272,67 @@ def _cmd_study(args) -> int:
     return 0
 
 
+def _csv_floats(text: str, flag: str) -> tuple[float, ...]:
+    try:
+        vals = tuple(float(v) for v in text.split(",") if v.strip())
+    except ValueError:
+        raise ValueError(f"{flag}: expected comma-separated numbers, got {text!r}") from None
+    if not vals:
+        raise ValueError(f"{flag}: give at least one number")
+    return vals
+
+
 def _cmd_pullout(args) -> int:
+    from gripper.experiments.protocol import GraspProtocol
     from gripper.experiments.pullout import run_pullout
 
-    for name in _csv_objects(args.objects):
-        res = run_pullout(name, params=_params(args), rate=args.rate, max_force=args.max_force)
-        bound = ">=" if res["held_at_max"] else ""
-        print(f"{name:<10} holding force {bound}{res['holding_force_N']:.2f} N "
-              f"(pull ramp {res['rate_N_per_s']:g} N/s until {res['slip_m'] * 1e3:g} mm slip)")
+    objects = _csv_objects(args.objects)
+    policy = args.policy
+    grips = _csv_floats(args.grip_tension, "--grip-tension") if policy == "controller" else (None,)
+    protos = [GraspProtocol(policy=policy, **({"grip_tension": g} if g is not None else {})).validate()
+              for g in grips]
+    if args.plot:
+        from gripper.render.figures import check_png_path
+
+        check_png_path(args.plot, "--plot")
+    params = _params(args)
+    results = []
+    for name in objects:
+        for proto in protos:
+            res = run_pullout(name, params=params, protocol=proto, rate=args.rate, max_force=args.max_force)
+            results.append(res)
+            bound = ">=" if res["held_at_max"] else ""
+            grip = f"grip {res['grip_tension_N']:g} N: " if res["grip_tension_N"] is not None else "per_object: "
+            print(f"{name:<10} {grip}holding force {bound}{res['holding_force_N']:.2f} N "
+                  f"(pull ramp {res['rate_N_per_s']:g} N/s until {res['slip_m'] * 1e3:g} mm slip)")
+    if args.plot:
+        from gripper.render.figures import holding_force_plot
+
+        holding_force_plot(results, args.plot)
+        print(f"wrote {args.plot}")
     return 0
+
+
+def _cmd_envelope(args) -> int:
+    from gripper.studies.envelope import load_envelope, run_envelope
+
+    check_output_dir(args.out)
+    env = load_envelope(args.file, trials=args.trials, seed=args.seed, grip_tension=args.grip_tension)
+    if args.workers < 1:
+        raise ValueError(f"--workers: must be >= 1, got {args.workers}")
+    check_scheduler(args.scheduler)
+    summary = run_envelope(env, args.out, workers=args.workers, scheduler=args.scheduler,
+                           progress=not args.no_progress)
+    print(f"capability envelope at a grip of {summary['grip_tension_N']:g} N "
+          f"(held: at least {summary['held_fraction']:.0%} of {env.trials} trials)")
+    for shape, s in summary["shapes"].items():
+        rng = s["gripping_range_m"]
+        grip = f"{rng[0] * 1e3:g}-{rng[1] * 1e3:g} mm" if rng else "none held"
+        pay = f"{s['payload_kg']:g} kg" if s["payload_kg"] is not None else "none held"
+        print(f"{shape:<10} gripping range {grip:<14} payload {pay}")
+    print(f"{summary['errors']} unstable trials, {summary['warnings']} MuJoCo warnings; wrote {args.out}/"
+          "trials.jsonl, envelope.csv, summary.json, map_*.png")
+    return EXIT_UNSTABLE if summary["errors"] else 0
 
 
 def _cmd_crush(args) -> int:
@@ -311,8 +365,15 @@ def build_parser() -> argparse.ArgumentParser:
                        help="mass noise fraction, e.g. 0.2 (default %(default)s)")
         p.add_argument("--friction-noise", type=float, default=noise.friction_frac,
                        help="friction noise fraction (default %(default)s)")
+        p.add_argument("--policy", choices=POLICIES, default=proto.policy,
+                       help="controller: close each finger until its cable tension reaches --grip-tension, "
+                            "knowing nothing of the object; per_object: each object's own closing command "
+                            "(default %(default)s)")
+        p.add_argument("--grip-tension", type=float, default=proto.grip_tension, metavar="N",
+                       help="the controller's grip set-point: cable tension per finger [N] (default %(default)s)")
         p.add_argument("--close-scale", type=float, default=proto.close_command_scale,
-                       help="multiplier on each object's closing command (default %(default)s; >1 squeezes harder)")
+                       help="per_object: multiplier on each object's closing command (default %(default)s; "
+                            ">1 squeezes harder)")
         p.add_argument("--release", action="store_true", help="open the fingers at the end of each trial")
         return p
 
@@ -422,6 +483,24 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--no-progress", action="store_true")
     st.set_defaults(func=_cmd_study)
 
+    ev = sub.add_parser(
+        "envelope", help="capability envelope: shapes x sizes x masses x frictions under the controller",
+        description="Grasp rigid spheres, cylinders and boxes over a grid of sizes, masses and frictions "
+                    "with the grasp controller at one set-point; write trials.jsonl, envelope.csv, "
+                    "summary.json (gripping range and payload per shape) and map_<shape>.png into --out. "
+                    "Rerunning resumes.")
+    ev.add_argument("file", nargs="?", default="default", metavar="FILE.toml",
+                    help="an envelope file, or the shipped one by name: default (the default)")
+    ev.add_argument("--out", required=True, metavar="DIR")
+    ev.add_argument("--trials", type=int, help="trials per point (default: the file's)")
+    ev.add_argument("--seed", type=int, help="base seed (default: the file's)")
+    ev.add_argument("--grip-tension", type=float, metavar="N", help="set-point [N] (default: the file's, "
+                    "else the protocol's)")
+    ev.add_argument("--workers", type=int, default=DEFAULT_WORKERS, help="local worker processes (default %(default)s)")
+    ev.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786")
+    ev.add_argument("--no-progress", action="store_true", help="no progress bar")
+    ev.set_defaults(func=_cmd_envelope)
+
     cal = sub.add_parser(
         "calibrate", help="fit the hinge springs to the flex reference finger or to bench data",
         description="Run the flexible-multibody reference bending test (a tetrahedral flex of "
@@ -456,8 +535,16 @@ def build_parser() -> argparse.ArgumentParser:
                      help="comma-separated static points left out of the fit (default 2)")
     cal.set_defaults(func=_cmd_calibrate)
 
-    po = with_params(sub.add_parser("pullout", help="holding force: pull the held object until it slips 5 mm"))
+    po = with_params(sub.add_parser(
+        "pullout", help="holding force: pull the held object until it slips 5 mm",
+        description="Grasp and lift as in a trial, then pull the object straight down at --rate until it "
+                    "slips 5 mm; with the controller, once per --grip-tension set-point."))
     po.add_argument("--objects", default="block,cylinder", help="comma-separated names")
+    po.add_argument("--policy", choices=POLICIES, default=GraspProtocol().policy,
+                    help="controller (default) or per_object closing")
+    po.add_argument("--grip-tension", default=str(GraspProtocol().grip_tension), metavar="N[,N...]",
+                    help="controller set-points [N], comma-separated (default %(default)s)")
+    po.add_argument("--plot", metavar="FILE.png", help="also write holding force against set-point")
     po.add_argument("--rate", type=float, default=PULL_RATE, help="pull ramp [N/s] (default %(default)s)")
     po.add_argument("--max-force", type=float, default=PULL_MAX, help="largest pull [N] (default %(default)s)")
     po.set_defaults(func=_cmd_pullout)

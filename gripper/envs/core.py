@@ -30,6 +30,7 @@ from gripper.model.names import finger_name
 from gripper.objects.library import GraspObject, Placement, get_object
 from gripper.sim.probes import STRAIN_DAMAGE_KINDS, ObjectProbe
 from gripper.sim.scene import build_grasp_scene
+from gripper.sim.sensing import ServoSensing, ServoSensor
 from gripper.sim.stepping import STATE_SPEC
 
 CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
@@ -137,7 +138,10 @@ def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
     parts = [("hinge_angle", nf * nh, "rad"), ("hinge_velocity", nf * nh, "rad/s"),
              ("cable_shortening", nf, "m"), ("cable_tension", nf, "N"), ("servo_angle", nf, "rad"),
              ("palm_height", 1, "m"), ("object_pos_rel_palm", 3, "m"), ("object_quat", 4, "-"),
-             ("pad_force", nf * cfg.params.finger.n_segments, "N")]
+             ("pad_force", nf * cfg.params.finger.n_segments, "N"),
+             # what the servos report (gripper.sim.sensing: quantised, noisy)
+             ("sensed_servo_position", nf, "rad"), ("sensed_servo_current", nf, "A"),
+             ("sensed_spool_tension", nf, "N")]
     out, i = {}, 0
     for name, size, unit in parts:
         out[name] = (i, size, unit)
@@ -167,6 +171,7 @@ class Scene:
         self.pads = np.array([sadr(f"{finger_name(k)}_seg{j}_pad") for k in range(nf)
                               for j in range(1, p.finger.n_segments + 1)])
         self.servo = self.probe.servo
+        self.sensor = ServoSensor(m, p, ServoSensing())
         self.spool = p.servo.spool_radius
         self.act_lift = {a: m.actuator(a).id for a in self.lift_q}
         self.lift_act_ids = np.array(list(self.act_lift.values()))
@@ -252,7 +257,9 @@ class SceneSet:
         m.body_inertia[b] *= place.mass_scale
         m.geom_friction[scene.probe.object_geom[:-1], 0] *= place.friction_scale
 
-    def new_episode(self, rng: np.random.Generator) -> tuple[Scene, mujoco.MjData, Placement]:
+    def new_episode(self, rng: np.random.Generator) -> tuple[Scene, mujoco.MjData, Placement, int]:
+        """A new episode's scene, data, placement and seed (the placement's and the sensor
+        noise's)."""
         obj = self.objects[int(rng.integers(len(self.objects)))]
         noise = TrialNoise(xy=self.cfg.pose_noise, yaw=self.cfg.yaw_noise, mass_frac=self.cfg.mass_noise,
                            friction_frac=self.cfg.friction_noise)
@@ -271,7 +278,7 @@ class SceneSet:
         d.qpos[scene.lift_q["lift_z"]] = scene.z_start
         d.ctrl[scene.act_lift["lift_z"]] = scene.z_start
         mujoco.mj_forward(scene.model, d)
-        return scene, d, place
+        return scene, d, place, seed
 
 
 @dataclass
@@ -288,11 +295,13 @@ class EpisodeState:
     damaged: bool = False
     last_obs: np.ndarray | None = None
     steps: int = 0
+    sensor_rng: np.random.Generator | None = None
 
 
 def start_episode(scenes: SceneSet, rng: np.random.Generator) -> EpisodeState:
-    scene, d, place = scenes.new_episode(rng)
-    return EpisodeState(scene=scene, data=d, placement=place, start_pos=scene.probe.object_pos(d))
+    scene, d, place, seed = scenes.new_episode(rng)
+    return EpisodeState(scene=scene, data=d, placement=place, start_pos=scene.probe.object_pos(d),
+                        sensor_rng=np.random.default_rng([seed, 1]))
 
 
 def state_vector(ep: EpisodeState) -> np.ndarray:
@@ -321,9 +330,10 @@ def observe(ep: EpisodeState, sens: np.ndarray) -> np.ndarray:
     pos = s.probe.object_pos(d) - palm
     quat = d.xquat[s.probe.body] if s.probe.body >= 0 else IDENTITY_QUAT
     reel = q[s.reel_q]
+    r = s.sensor.read(sens, ep.sensor_rng)
     return np.concatenate([
         q[s.hinge_q], d.qvel[s.hinge_v], reel, sens[s.tension], reel / s.spool, palm[2:3], pos, quat,
-        sens[s.pads]])
+        sens[s.pads], r.position, r.current, r.tension])
 
 
 def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.ndarray, cfg: EnvConfig,

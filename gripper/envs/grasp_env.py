@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v1``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v2``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v1")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v2")``.
 """
 
 from __future__ import annotations
@@ -119,7 +119,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Observation space
 
-    ``Box(-inf, inf, (84,), float64)`` with the default four fingers of six elements; the layout
+    ``Box(-inf, inf, (96,), float64)`` with the default four fingers of six elements; the layout
     is ``env.observation_structure`` (name -> (start, size, unit)):
 
     | part | indices | size | unit |
@@ -133,6 +133,13 @@ class SoftGripperGraspEnv(gym.Env):
     | object_pos_rel_palm | 53-55 | 3 | m |
     | object_quat | 56-59 | 4 | - |
     | pad_force | 60-83 | 24 | N |
+    | sensed_servo_position | 84-87 | 4 | rad |
+    | sensed_servo_current | 88-91 | 4 | A |
+    | sensed_spool_tension | 92-95 | 4 | N |
+
+    The ``sensed_*`` entries are what the servos report (:mod:`gripper.sim.sensing`: present
+    position in encoder counts, present current in 2.69 mA units, a spool load cell, each with
+    its noise, drawn from the episode's seed).
 
     Hinge angles and velocities are finger-major (finger 0 hinges 2-6, then finger 1, ...).
     Cable shortening is the cable reeled onto the spool; tension is the cable's limit force;
@@ -179,7 +186,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v1", **kwargs)``:
+    ``gymnasium.make("gripper:SoftGripperGrasp-v2", **kwargs)``:
 
     | argument | default | meaning |
     |---|---|---|
@@ -222,10 +229,13 @@ class SoftGripperGraspEnv(gym.Env):
       those of 0.6.0 (``scripts/fingerprint.py``).
     - v1, package 0.8.0: unchanged (object files, hardened inputs); seeded episodes are bitwise
       those of 0.7.0. Objects may be object files; ``info["object"]`` is the object's name.
+    - v2, package 0.9.0: the observation gains the servos' sensed position, current and spool
+      tension (96 entries, was 84). The dynamics, rewards and episode rules are unchanged.
+      v1 is no longer registered.
 
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v1", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v2", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """
@@ -351,7 +361,8 @@ class SoftGripperGraspEnv(gym.Env):
             self._ep = restore_episode(self._scenes, st["episode"])
 
 
-EPISODE_BOOKKEEPING = ("start_pos", "hold_ref", "hold_steps", "peak_strain", "damaged", "last_obs", "steps")
+EPISODE_BOOKKEEPING = ("start_pos", "hold_ref", "hold_steps", "peak_strain", "damaged", "last_obs", "steps",
+                       "sensor_rng")
 
 
 def restore_episode(scenes: SceneSet, st: dict) -> EpisodeState:

@@ -1,8 +1,10 @@
 """The experiments' protocols: the scripted grasp, its per-trial perturbations, the bending test,
 the pull-out and the crush test (frozen dataclasses and constants, SI units).
 
-Grasp phases, in order: settle, approach from above, close (servos ramped to the object's
-closing command at the contraction speed), lift, hold, horizontal shake, optional release.
+Grasp phases, in order: settle, approach from above, close (the grasp controller closes each
+finger at the contraction speed until its cable tension reaches the grip set-point, or, with
+``policy = "per_object"``, the servos ramp to the object's closing command), lift, hold,
+horizontal shake, optional release.
 This module needs only the standard library, so the command line shows these defaults in its
 help without importing MuJoCo.
 
@@ -20,6 +22,12 @@ from typing import Any
 
 from gripper.core.fields import Validated, param
 from gripper.core.timesteps import PAPER_BENDING_TIMESTEP, TRIAL_TIMESTEP
+
+# Grasp policies: the object-agnostic controller, or each object's own closing command.
+POLICIES = ("controller", "per_object")
+# The controller's default grip set-point [N of cable tension per finger] (docs/controller.md:
+# chosen on seed 0, verified on seed 1).
+GRIP_TENSION = 5.0
 
 
 @dataclass(frozen=True)
@@ -43,8 +51,15 @@ class GraspProtocol(Validated):
     tip_clearance: float = param(0.008, "m", ge=0, le=0.1, source="assumed: fingertips above the floor")
     palm_clearance: float = param(0.010, "m", ge=0, le=0.1, source="assumed: palm above the object's top")
     close_speed: float = param(0.04, "m/s", ge=1e-3, le=1, source="cable contraction speed (spool surface)")
+    policy: str = param("controller", "-", choices=POLICIES,
+                        source="controller: the object-agnostic grip (gripper.experiments.controller); "
+                        "per_object: each object's own closing command, for comparison")
+    grip_tension: float = param(GRIP_TENSION, "N", gt=0, le=54,
+                                source="controller's grip set-point: cable tension per finger "
+                                "(docs/controller.md; at most the servo's stall tension, 54 N)")
     close_command_scale: float = param(1.0, "-", ge=0.05, le=10,
-                                       source="multiplier on the object's closing command (>1 squeezes harder)")
+                                       source="per_object: multiplier on the object's closing command "
+                                       "(>1 squeezes harder)")
     close_hold_s: float = param(0.4, "s", ge=0, le=10, source="at the closing command before lifting")
     lift_height: float = param(0.10, "m", ge=0, le=0.2, source="the benchmark's definition of a grasp")
     lift_speed: float = param(0.10, "m/s", ge=1e-3, le=1, source="assumed")

@@ -28,7 +28,9 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     The pull is a body force on every body of the object in proportion to its mass (as a
     hanging weight would load it), ramped at ``rate`` until the object has moved ``slip``
     relative to the palm; the force at that moment is the holding force. If ``max_force`` is
-    reached first, the result is that bound with ``held_at_max = True``.
+    reached first, the result is that bound with ``held_at_max = True``. Under the grasp
+    controller the servos keep the goals and the current limit they had at the end of the hold
+    (the pull loads the cables more, so no regrip is due).
     """
     obj = get_object(obj) if isinstance(obj, str) else obj.validate()
     proto = (protocol or GraspProtocol()).validate()
@@ -43,7 +45,7 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     probe = ObjectProbe(m, obj, p.layout.n_fingers)
     rec = PeakRecorder(probe)
     short = proto.replace(hold_s=0.3, shake_s=0.0)
-    run_protocol(m, d, p, obj, short, probe, rec)
+    grasp = run_protocol(m, d, p, obj, short, probe, rec)
     masses = m.body_mass[probe.object_bodies]
     share = masses / masses.sum()
     rel0 = probe.object_pos(d) - d.xpos[probe.palm]
@@ -58,6 +60,8 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
         check_stable(m, d, "pull-out")
         if np.linalg.norm(probe.object_pos(d) - d.xpos[probe.palm] - rel0) >= slip:
             return {"object": obj.name, "holding_force_N": force, "held_at_max": False,
-                    "slip_m": slip, "rate_N_per_s": rate}
+                    "slip_m": slip, "rate_N_per_s": rate, "policy": proto.policy,
+                    "grip_tension_N": grasp.get("grip_tension_N")}
     return {"object": obj.name, "holding_force_N": max_force, "held_at_max": True,
-            "slip_m": slip, "rate_N_per_s": rate}
+            "slip_m": slip, "rate_N_per_s": rate, "policy": proto.policy,
+            "grip_tension_N": grasp.get("grip_tension_N")}

@@ -23,12 +23,16 @@ from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-SCHEMA_ID = "gripper.trial_record/1"
+SCHEMA_ID = "gripper.trial_record/2"
 STATUSES = ("ok", "error")
 FAILED_PHASES = ("lift", "hold", "shake", "damage")
 # Fields set only when the protocol ran to its end (status "ok").
-OUTCOME_FIELDS = ("lift_height_m", "slip_m", "max_slip_m", "damaged", "damage_measure",
-                  "damage_limit", "close_command_rad")
+REQUIRED_OUTCOME_FIELDS = ("lift_height_m", "slip_m", "max_slip_m", "damaged", "damage_measure",
+                           "damage_limit", "close_command_rad")
+# Added in record schema 2 (gripper 0.9.0): optional, so that older records still read.
+OUTCOME_FIELDS = (*REQUIRED_OUTCOME_FIELDS, "policy", "servo_at_grasp", "servo_at_hold_end")
+# Set only by the grasp controller (policy "controller").
+CONTROLLER_FIELDS = ("grip_tension_N", "contact_time_s", "grasp_time_s")
 
 
 @dataclass(frozen=True)
@@ -59,7 +63,17 @@ class TrialRecord(Mapping[str, Any]):
             the end and its largest value since the end of the lift [m].
         damaged, damage_measure, damage_limit: the object's damage measure (its unit is the
             object's) against its limit.
-        close_command_rad: the servo closing set-point used [rad of spool angle].
+        close_command_rad: the servo closing set-point used [rad of spool angle]; under the
+            controller, the largest goal position when the close phase ended.
+        policy: ``controller`` or ``per_object``.
+        servo_at_grasp, servo_at_hold_end: the servos' sensed state at the end of the close
+            phase and of the hold (:class:`gripper.sim.sensing.ServoReading`: ``position_rad``,
+            ``current_A``, ``load``, ``tension_N``, one entry per finger).
+        grip_tension_N: the controller's set-point [N] (controller only).
+        contact_time_s: from the start of closing to the first finger's detected contact [s]
+            (controller only; None if none was detected).
+        grasp_time_s: from the start of closing until every finger held its set-point or the
+            end of the servo's travel [s] (controller only; None if that never happened).
         error: what went unstable (status ``error`` only).
         peak_total_force_N, peak_finger_force_N, peak_cable_tension_N: peaks over the trial.
         warnings: MuJoCo warnings raised.
@@ -90,6 +104,12 @@ class TrialRecord(Mapping[str, Any]):
     damage_measure: float | None = None
     damage_limit: float | None = None
     close_command_rad: float | None = None
+    policy: str | None = None
+    servo_at_grasp: dict[str, list[float]] | None = None
+    servo_at_hold_end: dict[str, list[float]] | None = None
+    grip_tension_N: float | None = None
+    contact_time_s: float | None = None
+    grasp_time_s: float | None = None
     error: str | None = None
     run_config_hash: str | None = None
 
@@ -102,7 +122,7 @@ class TrialRecord(Mapping[str, Any]):
             v = getattr(self, f.name)
             if f.name in OUTCOME_FIELDS and self.status != "ok":
                 continue
-            if f.name in ("error", "run_config_hash") and v is None:
+            if f.name in ("error", "run_config_hash", *CONTROLLER_FIELDS) and v is None:
                 continue
             out[f.name] = v
         return out
@@ -127,7 +147,7 @@ class TrialRecord(Mapping[str, Any]):
             if not _matches(value, props[key]):
                 raise ValueError(f"{where}: {key}: expected {_describe(props[key])}, got {value!r}")
         if data["status"] == "ok":
-            for key in OUTCOME_FIELDS:
+            for key in REQUIRED_OUTCOME_FIELDS:
                 if key not in data:
                     raise ValueError(f"{where}: missing key {key!r} (status ok)")
         return cls(**data)
@@ -169,8 +189,11 @@ _JSON_TYPES = {str: "string", int: "integer", float: "number", bool: "boolean", 
 def _schema_of(tp: Any) -> dict[str, Any]:
     origin = typing.get_origin(tp)
     if origin in (types.UnionType, typing.Union):
-        types_ = [_schema_of(a)["type"] for a in typing.get_args(tp)]
-        return {"type": types_}
+        parts = [_schema_of(a) for a in typing.get_args(tp)]
+        out: dict[str, Any] = {"type": [p["type"] for p in parts]}
+        for p in parts:  # the container's item schema (a union of one container and null)
+            out.update({k: v for k, v in p.items() if k != "type"})
+        return out
     if origin is list:
         return {"type": "array", "items": _schema_of(typing.get_args(tp)[0])}
     if origin is dict:

@@ -27,6 +27,8 @@ import numpy as np
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
+from gripper.core.units import DEG
+from gripper.experiments.controller import GripController
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
 from gripper.objects.library import (
@@ -37,6 +39,7 @@ from gripper.objects.library import (
 from gripper.sim.damage import damage_measure
 from gripper.sim.probes import ObjectProbe, PeakRecorder
 from gripper.sim.scene import build_grasp_scene
+from gripper.sim.sensing import ServoSensing, ServoSensor
 from gripper.sim.stability import SimulationUnstable
 from gripper.sim.stepping import ChunkStepper, run_phase
 
@@ -61,10 +64,11 @@ def grasp_height(p: GripperParams, obj: GraspObject, proto: GraspProtocol) -> fl
 def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
               params: GripperParams | None = None, protocol: GraspProtocol | None = None,
               noise: TrialNoise | None = None, placement: Placement | None = None,
-              frame_sink=None) -> TrialRecord:
+              sensing: ServoSensing | None = None, frame_sink=None) -> TrialRecord:
     """Run one scripted grasp trial; return its record (:class:`TrialRecord`, SI units).
 
-    ``placement`` overrides the sampled perturbation. ``frame_sink`` (optional, see
+    ``placement`` overrides the sampled perturbation; ``sensing`` the servos' sensor model (its
+    noise is drawn from a generator seeded by seed, index and object name). ``frame_sink`` (optional, see
     :class:`gripper.render.video.FrameRecorder`) gets ``start(model, probe)`` once and then
     ``add(phase, states, sensordata)`` after every chunk, for recording a video. An unstable simulation does not raise:
     the record gets ``status = "error"`` and the message, and counts neither as success nor
@@ -75,12 +79,14 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
     p = (params or GripperParams()).validate()
     p = p.replace(sim=p.sim.replace(timestep=proto.timestep)).validate()
     noise = (noise or TrialNoise()).validate()
+    sensing = (sensing or ServoSensing()).validate()
     place = placement.validate() if placement is not None else sample_placement(obj, noise, seed, index)
     head: dict[str, Any] = {
         "trial_id": f"{obj.name}-{seed}-{index:04d}", "object": obj.name, "seed": seed, "index": index,
         "perturbation": {"x_m": place.x, "y_m": place.y, "yaw_rad": place.yaw,
                          "mass_scale": place.mass_scale, "friction_scale": place.friction_scale},
-        "config_hash": stable_hash([p.to_dict(), proto.to_dict(), noise.to_dict(), obj.to_dict()]),
+        "config_hash": stable_hash([p.to_dict(), proto.to_dict(), noise.to_dict(), obj.to_dict(),
+                                   sensing.to_dict()]),
         "versions": versions(),
     }
     wall0 = time.perf_counter()
@@ -93,7 +99,8 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
         frame_sink.start(m, probe)
         rec.frame_sink = frame_sink
     try:
-        outcome = {"status": "ok", **run_protocol(m, d, p, obj, proto, probe, rec)}
+        sensor = ServoSensor(m, p, sensing, np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 1]))
+        outcome = {"status": "ok", **run_protocol(m, d, p, obj, proto, probe, rec, sensor)}
     except SimulationUnstable as e:
         outcome = {"status": "error", "success": None, "failed_phase": None, "error": str(e)}
     return TrialRecord(
@@ -103,25 +110,39 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
         sim_time_s=float(d.time), wall_time_s=time.perf_counter() - wall0)
 
 
-def run_protocol(m, d, p, obj, proto, probe, rec) -> dict:
+def run_protocol(m, d, p, obj, proto, probe, rec, sensor: ServoSensor | None = None) -> dict:
+    """Run the grasp protocol on a built scene; ``sensor`` reads the servos (default: a
+    :class:`ServoSensor` with the default sensing and a fixed generator)."""
     stepper = ChunkStepper(m, d)
+    if sensor is None:
+        sensor = ServoSensor(m, p, ServoSensing(), np.random.default_rng(0))
     try:
-        return _protocol_phases(stepper, p, obj, proto, probe, rec)
+        return _protocol_phases(stepper, p, obj, proto, probe, rec, sensor)
     finally:
         stepper.close()
 
 
-def _protocol_phases(stepper, p, obj, proto, probe, rec) -> dict:
+def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
     m, d = stepper.m, stepper.d
     ch = proto.chunk_steps
+    chunk_s = ch * m.opt.timestep
     z_grasp = grasp_height(p, obj, proto) - p.lift.home_height  # lift_z set-point [m]
-    close_cmd = min(obj.close_command * proto.close_command_scale, float(m.actuator_ctrlrange[probe.servo[0], 1]))
+    travel = float(m.actuator_ctrlrange[probe.servo[0], 1])
     close_rate = proto.close_speed / p.servo.spool_radius  # rad/s of spool
+    grip = None
+    if proto.policy == "controller":
+        kp, _ = p.servo.datasheet.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
+                                           damping_ratio=p.servo.damping_ratio)
+        grip = GripController(m, probe.servo, sensor, grip_tension=proto.grip_tension, close_rate=close_rate,
+                              spool_radius=p.servo.spool_radius, kp=kp)
+        servo_cmd = grip.goals
+    close_cmd = min(obj.close_command * proto.close_command_scale, travel)
 
     def ctrl(servo, z, x=None):
         def fn(t):
             u = np.zeros((len(t), m.nu))
-            u[:, probe.servo] = np.asarray(servo(t))[:, None] if callable(servo) else servo
+            s = np.asarray(servo(t)) if callable(servo) else servo
+            u[:, probe.servo] = s if np.ndim(s) == 2 else np.asarray(s)[..., None] if np.ndim(s) else s
             u[:, probe.lift_z] = z(t) if callable(z) else z
             if x is not None:
                 u[:, probe.lift_x] = x(t)
@@ -132,13 +153,37 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec) -> dict:
     start = probe.object_pos(d)
     t_app = abs(z_grasp) / proto.approach_speed
     run_phase(stepper, probe, rec, ctrl(0.0, lambda t: z_grasp * np.minimum(1.0, t / t_app)), t_app, ch, "approach")
-    t_close = close_cmd / close_rate
-    run_phase(stepper, probe, rec, ctrl(lambda t: close_cmd * np.minimum(1.0, t / t_close), z_grasp),
-               t_close + proto.close_hold_s, ch, "close")
+    sensed: dict[str, dict] = {}
+    if grip is None:
+        t_close = close_cmd / close_rate
+        run_phase(stepper, probe, rec, ctrl(lambda t: close_cmd * np.minimum(1.0, t / t_close), z_grasp),
+                  t_close + proto.close_hold_s, ch, "close")
+        hold_cmd = close_cmd
+    else:
+        grip.start(d)
+
+        def closed(dd):
+            grip.update(dd, chunk_s)
+            return not math.isnan(grip.grip_time) and dd.time - grip.t0 >= grip.grip_time + proto.close_hold_s
+
+        run_phase(stepper, probe, rec, ctrl(servo_cmd, z_grasp), travel / close_rate + proto.close_hold_s, ch,
+                  "close", closed)
+        hold_cmd = servo_cmd
+    sensed["grasp"] = sensor.read(d.sensordata).to_dict()
     t_lift = proto.lift_height / proto.lift_speed
     z_top = z_grasp + proto.lift_height
-    lift = ctrl(close_cmd, lambda t: z_grasp + proto.lift_height * np.minimum(1.0, t / t_lift))
-    run_phase(stepper, probe, rec, lift, t_lift + proto.lift_settle_s, ch, "lift")
+    on_grip = (lambda dd: grip.update(dd, chunk_s)) if grip is not None else None
+
+    def chained(*fns):
+        def fn(dd):
+            for f in fns:
+                if f is not None:
+                    f(dd)
+            return False
+        return fn
+
+    lift = ctrl(hold_cmd, lambda t: z_grasp + proto.lift_height * np.minimum(1.0, t / t_lift))
+    run_phase(stepper, probe, rec, lift, t_lift + proto.lift_settle_s, ch, "lift", on_grip and chained(on_grip))
 
     def rel(dd):
         return probe.object_pos(dd) - dd.xpos[probe.palm]
@@ -158,24 +203,37 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec) -> dict:
         max_slip[0] = max(max_slip[0], float(np.linalg.norm(rel(dd) - rel_lift)))
         return False
 
-    run_phase(stepper, probe, rec, ctrl(close_cmd, z_top), proto.hold_s, ch, "hold", track)
+    run_phase(stepper, probe, rec, ctrl(hold_cmd, z_top), proto.hold_s, ch, "hold", chained(on_grip, track))
     check("hold")
+    sensed["hold"] = sensor.read(d.sensordata).to_dict()
     w = 2 * math.pi * proto.shake_frequency
-    run_phase(stepper, probe, rec, ctrl(close_cmd, z_top, lambda t: proto.shake_amplitude * np.sin(w * t)),
-               proto.shake_s, ch, "shake", track)
+    run_phase(stepper, probe, rec, ctrl(hold_cmd, z_top, lambda t: proto.shake_amplitude * np.sin(w * t)),
+              proto.shake_s, ch, "shake", chained(on_grip, track))
     check("shake")
     lift_height = float(probe.object_pos(d)[2] - start[2])
     slip = float(np.linalg.norm(rel(d) - rel_lift))
     damage = damage_measure(m, d, obj, probe, peak_strain=rec.peak_strain, peak_force=rec.peak_total)
     if proto.release:
-        run_phase(stepper, probe, rec, ctrl(lambda t: close_cmd * np.maximum(0.0, 1 - t / proto.release_s), z_top),
-                   proto.release_s, ch, "release")
+        if grip is None:
+            opening = ctrl(lambda t: close_cmd * np.maximum(0.0, 1 - t / proto.release_s), z_top)
+        else:
+            grip.release()
+            opening = ctrl(servo_cmd, z_top)
+        run_phase(stepper, probe, rec, opening, proto.release_s, ch, "release", on_grip)
     damaged = obj.is_damaged(damage)
     failed = next((name for name in ("lift", "hold", "shake") if not phase_ok[name][0]), None)
     if failed is None and damaged:
         failed = "damage"
-    return {
+    out = {
         "success": failed is None, "failed_phase": failed, "lift_height_m": lift_height, "slip_m": slip,
         "max_slip_m": max_slip[0], "damaged": damaged, "damage_measure": damage,
-        "damage_limit": obj.damage_limit, "close_command_rad": close_cmd,
+        "damage_limit": obj.damage_limit,
+        "close_command_rad": close_cmd if grip is None else float(grip.goal.max()),
+        "policy": proto.policy, "servo_at_grasp": sensed["grasp"], "servo_at_hold_end": sensed["hold"],
     }
+    if grip is not None:
+        out.update(grip_tension_N=grip.grip_tension,
+                   contact_time_s=float(np.nanmin(grip.contact_time)) if np.isfinite(grip.contact_time).any()
+                   else None,
+                   grasp_time_s=None if math.isnan(grip.grip_time) else grip.grip_time)
+    return out

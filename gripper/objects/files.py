@@ -41,7 +41,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from gripper.objects.library import DAMAGE_CRITERIA, KINDS, RIGID_CLOSE, GraspObject, mesh_object
+from gripper.objects.library import DAMAGE_CRITERIA, KINDS, RIGID_CLOSE, RIGID_KINDS, GraspObject, mesh_object
 
 MATERIAL_KEYS = ("youngs_modulus", "thickness", "yield_strain")
 SECTIONS: dict[str, tuple[str, ...] | None] = {
@@ -51,7 +51,6 @@ SECTIONS: dict[str, tuple[str, ...] | None] = {
     "material": MATERIAL_KEYS,
     "reasons": None,  # any key: free text
 }
-RIGID_KINDS = ("rigid_box", "rigid_cylinder", "mesh")
 # The criterion a deformable kind is damaged by (the project models one per kind).
 OWN_CRITERION = {"balloon": "strain", "bag": "strain", "paper_box": "dent"}
 MATERIAL_NEEDS = {"balloon": ("youngs_modulus",), "bag": ("youngs_modulus", "thickness"),
@@ -135,7 +134,7 @@ def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspO
         raise fail("object.density", f"a {kind} takes its mass, not a density")
     friction = get(obj, "object", "friction", "number", required=True)
     yaw_symmetric = get(obj, "object", "yaw_symmetric", "bool",
-                        default=kind in ("rigid_cylinder", "balloon"))
+                        default=kind in ("rigid_cylinder", "rigid_sphere", "balloon"))
     close = get(obj, "object", "close_command", "number",
                 default=RIGID_CLOSE if kind in RIGID_KINDS else None, required=kind not in RIGID_KINDS)
     size = None
@@ -173,6 +172,7 @@ def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspO
     assert size is not None
     if mass is None:
         volume = (8 * size[0] * size[1] * size[2] if kind == "rigid_box"
+                  else 4 / 3 * math.pi * size[0] ** 3 if kind == "rigid_sphere"
                   else math.pi * size[0] ** 2 * 2 * size[2])
         mass = density * volume
     try:

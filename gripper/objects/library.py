@@ -46,10 +46,11 @@ DROP_GAP = 0.001
 DAMAGE_CRITERIA = {
     "strain": ("peak edge strain of the membrane or film [-] (burst or tear above the limit)", ("balloon", "bag")),
     "dent": ("permanent dent depth after spring-back [m]", ("paper_box",)),
-    "contact_force": ("peak total contact force [N]", ("rigid_box", "rigid_cylinder", "mesh")),
-    "none": ("not damaged by grasping", ("rigid_box", "rigid_cylinder", "mesh")),
+    "contact_force": ("peak total contact force [N]", ("rigid_box", "rigid_cylinder", "rigid_sphere", "mesh")),
+    "none": ("not damaged by grasping", ("rigid_box", "rigid_cylinder", "rigid_sphere", "mesh")),
 }
-KINDS = ("rigid_box", "rigid_cylinder", "mesh", "balloon", "paper_box", "bag")
+RIGID_KINDS = ("rigid_box", "rigid_cylinder", "rigid_sphere", "mesh")
+KINDS = (*RIGID_KINDS, "balloon", "paper_box", "bag")
 # The open fingers' grasping faces stand this far from the palm axis in the default design
 # (layout.palm_radius): an object's horizontal footprint must fit inside [m].
 APERTURE_RADIUS = 0.040
@@ -61,9 +62,11 @@ class GraspObject(Validated):
 
     Attributes:
         name: the object's name, as trial records give it.
-        kind: ``rigid_box``, ``rigid_cylinder``, ``mesh`` (rigid, from a user mesh), or one of
+        kind: ``rigid_box``, ``rigid_cylinder``, ``rigid_sphere``, ``mesh`` (rigid, from a user
+            mesh), or one of
             the deformable kinds the project models: ``balloon``, ``paper_box``, ``bag``.
-        size: half-extents [m] (box: x, y, z; cylinder/balloon: radius, radius, half-height).
+        size: half-extents [m] (box: x, y, z; cylinder/balloon: radius, radius, half-height;
+            sphere: radius three times).
         mass: total mass [kg].
         friction: sliding friction coefficient against the silicone pads [-].
         yaw_symmetric: True where yaw does not change the grasp (no yaw is sampled).
@@ -79,6 +82,8 @@ class GraspObject(Validated):
         mesh_file: path of the mesh (kind ``mesh``).
         footprint_radius: radius of the mesh hull's horizontal footprint about its centre [m]
             (kind ``mesh``; 0 for the primitives, whose footprint follows from ``size``).
+        oversize: the object may be wider than the open fingers (the capability envelope's
+            largest sizes: the fingers then land on it); off for library and user objects.
         reasons: (field, reason) pairs: where the numbers come from (not part of the physics,
             so not part of :meth:`to_dict`).
     """
@@ -97,6 +102,7 @@ class GraspObject(Validated):
     yield_strain: float = 0.0
     mesh_file: str = ""
     footprint_radius: float = 0.0
+    oversize: bool = False
     reasons: tuple[tuple[str, str], ...] = dataclasses.field(default=(), compare=False)
 
     @property
@@ -146,7 +152,9 @@ class GraspObject(Validated):
         if self.damage != "none" and (isinstance(v, bool) or not (isinstance(v, int | float)
                                                                  and math.isfinite(v) and v > 0)):
             raise ValueError(f"{where}.damage_limit: must be > 0, got {v!r}")
-        if self.half_width > APERTURE_RADIUS:
+        if self.kind == "rigid_sphere" and not (self.size[0] == self.size[1] == self.size[2]):
+            raise ValueError(f"{where}.size: a sphere's three half-extents are its radius, got {list(self.size)}")
+        if self.half_width > APERTURE_RADIUS and not self.oversize:
             what = "hull footprint radius" if self.kind == "mesh" and self.footprint_radius > 0 else \
                 "horizontal half-extent"
             raise ValueError(f"{where}.size: its {what} is {self.half_width:.3f} m over all yaws; the open "
@@ -325,7 +333,7 @@ def add_object(spec: mujoco.MjSpec, obj: GraspObject, place: Placement = Placeme
     pos = [place.x, place.y, z]
     quat = _yaw_quat(place.yaw)
     G = mujoco.mjtGeom
-    if obj.kind in ("rigid_box", "rigid_cylinder", "mesh"):
+    if obj.kind in RIGID_KINDS:
         body = spec.worldbody.add_body(name=OBJECT_BODY, pos=pos, quat=quat)
         body.add_freejoint(name="object_free")
         if obj.kind == "rigid_box":
@@ -333,6 +341,8 @@ def add_object(spec: mujoco.MjSpec, obj: GraspObject, place: Placement = Placeme
         elif obj.kind == "rigid_cylinder":
             geom = body.add_geom(name="object_geom", type=G.mjGEOM_CYLINDER,
                                  size=[obj.size[0], obj.size[2], 0])
+        elif obj.kind == "rigid_sphere":
+            geom = body.add_geom(name="object_geom", type=G.mjGEOM_SPHERE, size=[obj.size[0], 0, 0])
         else:
             mesh = load_mesh(obj.mesh_file)
             verts = mesh.vertices - 0.5 * (mesh.bounds[0] + mesh.bounds[1])

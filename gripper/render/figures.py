@@ -136,3 +136,38 @@ def success_plot(summary: dict, out: str | Path) -> None:
         _save(fig, out)
     finally:
         plt.close(fig)
+
+
+def holding_force_plot(results: list[dict], out: str | Path) -> None:
+    """Holding force against the controller's grip set-point, one line per object (from
+    :func:`gripper.experiments.pullout.run_pullout` results); PNG. Points held at the pull's
+    upper bound are drawn hollow (the holding force is at least that)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = check_png_path(out, "--plot")
+    fig, ax = plt.subplots(figsize=(5.5, 3.8))
+    names = list(dict.fromkeys(r["object"] for r in results))
+    for k, name in enumerate(names):
+        rs = sorted((r for r in results if r["object"] == name and r["grip_tension_N"] is not None),
+                    key=lambda r: r["grip_tension_N"])
+        if not rs:
+            continue
+        x = [r["grip_tension_N"] for r in rs]
+        y = [r["holding_force_N"] for r in rs]
+        ax.plot(x, y, "-", color=f"C{k}", label=name)
+        for xi, yi, r in zip(x, y, rs, strict=True):
+            ax.plot(xi, yi, "o", color=f"C{k}", mfc="none" if r["held_at_max"] else f"C{k}")
+    ax.set_xlabel("grip set-point: cable tension per finger [N]")
+    ax.set_ylabel("holding force (pull to 5 mm slip) [N]")
+    ax.set_title("Pull-out under the grasp controller")
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=9)
+    fig.tight_layout()
+    try:
+        _save(fig, out)
+    finally:
+        plt.close(fig)

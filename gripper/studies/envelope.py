@@ -1,0 +1,286 @@
+"""The gripper's capability envelope: which shapes, sizes, masses and frictions the grasp
+controller holds at one grip set-point.
+
+An envelope file (TOML; ``gripper envelope default`` runs the shipped one):
+
+```toml
+[envelope]
+shapes = ["sphere", "cylinder", "box"]
+sizes = [0.010, 0.020, 0.030, 0.045, 0.060, 0.075, 0.090, 0.110]  # width [m]: diameter or side
+masses = [0.05, 0.2, 0.5, 1.0, 2.0]                                 # [kg]
+frictions = [0.6]                                                   # silicone-object pair [-]
+trials = 3
+seed = 0
+grip_tension = 5.0                                                  # [N]; default: the protocol's
+```
+
+Every (shape, size, mass, friction) point is a rigid object: a sphere of that diameter, or an
+upright cylinder or square box of that width and :data:`ENVELOPE_HEIGHT` height (the library's
+block and cylinder height), never damaged. Each runs ``trials`` benchmark trials (the default
+protocol with ``policy = "controller"``, the default placement noise). Objects wider than the
+open fingers are allowed: the fingers then land on them and the trial fails, which is what the
+envelope is to show.
+
+Output folder: ``envelope.json`` (the spec and its hash; a rerun with another spec is refused),
+``trials.jsonl`` (one record per trial, resumable as the benchmark's), ``envelope.csv`` (tidy:
+one row per trial), ``summary.json`` and one ``map_<shape>.png`` per shape (success fraction over
+size × mass, at the first friction). Derived figures, per shape and friction: a point is *held*
+when at least two thirds of its trials succeed; the **gripping range** is the smallest and the
+largest size held at the lightest mass, the **payload** the largest mass held at any size.
+
+Example:
+    >>> from gripper.studies.envelope import load_envelope
+    >>> load_envelope("default").trials                     # doctest: +SKIP
+    3
+"""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import math
+import os
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from gripper.bench.defaults import DEFAULT_WORKERS
+from gripper.core.hashing import stable_hash
+from gripper.core.params import GripperParams
+from gripper.core.resources import STUDIES_DIR
+from gripper.experiments.protocol import GRIP_TENSION, GraspProtocol, TrialNoise
+from gripper.objects.library import GraspObject
+
+SHAPES = {"sphere": "rigid_sphere", "cylinder": "rigid_cylinder", "box": "rigid_box"}
+# Height of the envelope's cylinders and boxes [m]: the library block's and cylinder's 60-70 mm
+# class, so that the palm stands where it does for them (grasp height: fingertips 8 mm above
+# the floor, palm 10 mm above the top).
+ENVELOPE_HEIGHT = 0.060
+# A point is held when at least this fraction of its trials succeed.
+HELD_FRACTION = 2 / 3
+KEYS = ("shapes", "sizes", "masses", "frictions", "trials", "seed", "grip_tension")
+
+
+@dataclass(frozen=True)
+class Envelope:
+    """A validated envelope spec (see the module docstring); SI units."""
+
+    shapes: tuple[str, ...] = ("sphere", "cylinder", "box")
+    sizes: tuple[float, ...] = (0.010, 0.020, 0.030, 0.045, 0.060, 0.075, 0.090, 0.110)
+    masses: tuple[float, ...] = (0.05, 0.2, 0.5, 1.0, 2.0)
+    frictions: tuple[float, ...] = (0.6,)
+    trials: int = 3
+    seed: int = 0
+    grip_tension: float = GRIP_TENSION
+    params: GripperParams = field(default_factory=GripperParams)
+
+    def validate(self) -> Envelope:
+        def fail(key, msg):
+            return ValueError(f"envelope.{key}: {msg}")
+
+        if not self.shapes or any(s not in SHAPES for s in self.shapes):
+            raise fail("shapes", f"give one or more of {', '.join(SHAPES)}, got {list(self.shapes)!r}")
+        if len(set(self.shapes)) != len(self.shapes):
+            raise fail("shapes", f"each shape once, got {list(self.shapes)!r}")
+        for key, lo, hi in (("sizes", 1e-3, 0.3), ("masses", 1e-3, 20.0), ("frictions", 0.01, 3.0)):
+            vals = getattr(self, key)
+            if not vals or any(isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v)
+                               or not lo <= v <= hi for v in vals):
+                raise fail(key, f"give a list of numbers in [{lo:g}, {hi:g}], got {list(vals)!r}")
+            if len(set(vals)) != len(vals):
+                raise fail(key, f"each value once, got {list(vals)!r}")
+        if isinstance(self.trials, bool) or not isinstance(self.trials, int) or not 1 <= self.trials <= 1000:
+            raise fail("trials", f"must be an integer in [1, 1000], got {self.trials!r}")
+        if isinstance(self.seed, bool) or not isinstance(self.seed, int):
+            raise fail("seed", f"must be an integer, got {self.seed!r}")
+        try:
+            self.protocol()
+        except ValueError as e:
+            raise fail("grip_tension", str(e).split(": ", 1)[-1]) from None
+        return self
+
+    def protocol(self) -> GraspProtocol:
+        return GraspProtocol(policy="controller", grip_tension=self.grip_tension).validate()
+
+    def points(self) -> list[tuple[str, float, float, float]]:
+        """(shape, size, mass, friction) in the order records are written."""
+        return [(s, w, m, mu) for s in self.shapes for w in self.sizes for m in self.masses for mu in self.frictions]
+
+    def jobs(self) -> list[tuple[int, int]]:
+        """(point index, trial index) in record order."""
+        return [(k, i) for k in range(len(self.points())) for i in range(self.trials)]
+
+    def identity(self) -> dict:
+        from gripper.core.provenance import versions
+
+        return {"shapes": list(self.shapes), "sizes": list(self.sizes), "masses": list(self.masses),
+                "frictions": list(self.frictions), "trials": self.trials, "seed": self.seed,
+                "grip_tension": self.grip_tension, "params": self.params.to_dict(),
+                "protocol": self.protocol().to_dict(), "noise": TrialNoise().to_dict(),
+                "versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")}}
+
+    def hash(self) -> str:
+        return stable_hash([self.identity()])
+
+
+def envelope_object(shape: str, size: float, mass: float, friction: float) -> GraspObject:
+    """The rigid object of one envelope point (``size``: the width [m])."""
+    r = 0.5 * size
+    half = (r, r, r) if shape == "sphere" else (r, r, 0.5 * ENVELOPE_HEIGHT)
+    name = f"{shape}-{size * 1e3:g}mm-{mass * 1e3:g}g-mu{friction:g}"
+    return GraspObject(name=name, kind=SHAPES[shape], size=half, mass=mass, friction=friction,
+                       yaw_symmetric=shape != "box", close_command=3.0, damage="none", damage_limit=0.0,
+                       oversize=True).validate()
+
+
+def load_envelope(path: str | Path, **overrides) -> Envelope:
+    """Parse an envelope file, or the shipped one by name (``default``); ``overrides`` replace
+    its keys (the command line's flags). Every error names the key.
+
+    Raises:
+        ValueError: unreadable file, bad TOML, unknown key, or a value out of range.
+    """
+    path = Path(path)
+    shipped = STUDIES_DIR / f"envelope_{path.name}.toml"
+    if not path.exists() and path.suffix == "" and path.parent == Path(".") and shipped.is_file():
+        path = shipped
+    try:
+        data = tomllib.loads(path.read_text())
+    except OSError as e:
+        raise ValueError(f"envelope: cannot read {path} ({e.strerror})") from None
+    except tomllib.TOMLDecodeError as e:
+        raise ValueError(f"envelope: {path} is not valid TOML ({e})") from None
+    if set(data) != {"envelope"} or not isinstance(data["envelope"], dict):
+        raise ValueError(f"envelope: {path}: expected one [envelope] table, got {sorted(data)}")
+    spec = dict(data["envelope"])
+    unknown = sorted(set(spec) - set(KEYS))
+    if unknown:
+        raise ValueError(f"envelope.{unknown[0]}: unknown key; allowed: {', '.join(KEYS)}")
+    spec.update({k: v for k, v in overrides.items() if v is not None})
+    for key in ("shapes", "sizes", "masses", "frictions"):
+        if key in spec:
+            if not isinstance(spec[key], list | tuple):
+                raise ValueError(f"envelope.{key}: must be a list, got {spec[key]!r}")
+            spec[key] = tuple(spec[key])
+    return Envelope(**spec).validate()
+
+
+def _run_one(env: Envelope, k: int, index: int, run_hash: str) -> dict:
+    from gripper.experiments.trial import run_trial
+
+    shape, size, mass, mu = env.points()[k]
+    rec = run_trial(envelope_object(shape, size, mass, mu), env.seed, index, params=env.params,
+                    protocol=env.protocol())
+    return {"point": k, "shape": shape, "size_m": size, "mass_kg": mass, "friction": mu,
+            **dataclasses.replace(rec, run_config_hash=run_hash).to_dict()}
+
+
+def run_envelope(env: Envelope, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
+                 progress: bool = True) -> dict:
+    """Run (or resume) the envelope into ``out``; write the table, the maps and the summary."""
+    from gripper.bench.execution import open_run, read_jsonl, run_ordered
+
+    env.validate()
+    h = env.hash()
+    out = open_run(out, workers, scheduler, "envelope.json", "envelope", h, env.identity(), "another envelope")
+    path = out / "trials.jsonl"
+    done = {(r["point"], r["index"]): r for r in read_jsonl(path)}
+    jobs = env.jobs()
+    todo = [(env, k, i, h) for k, i in jobs if (k, i) not in done]
+    run_ordered(todo, _run_one, path, workers=workers, scheduler=scheduler,
+                on_record=lambda r: done.__setitem__((r["point"], r["index"]), r),
+                progress=(len(jobs), len(jobs) - len(todo), "envelope trials") if progress else None)
+    records = [done[j] for j in jobs]
+    write_table(records, out / "envelope.csv")
+    summary = summarize(records, env)
+    tmp = out / "summary.json.tmp"
+    import json
+
+    tmp.write_text(json.dumps(summary, indent=2, sort_keys=True))
+    os.replace(tmp, out / "summary.json")
+    write_maps(records, env, out)
+    return summary
+
+
+COLUMNS = ("shape", "size_m", "mass_kg", "friction", "index", "status", "success", "failed_phase",
+           "peak_total_force_N", "grasp_time_s", "lift_height_m", "max_slip_m", "warnings")
+
+
+def write_table(records: list[dict], path: Path) -> None:
+    """Tidy CSV: one row per trial."""
+    tmp = path.with_suffix(".tmp")
+    with open(tmp, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(COLUMNS)
+        for r in records:
+            w.writerow([r.get(c) for c in COLUMNS])
+    os.replace(tmp, path)
+
+
+def held_fraction(records: list[dict], point: int) -> float | None:
+    """Success fraction of one point's trials without error (None if all errored)."""
+    ok = [r for r in records if r["point"] == point and r["status"] == "ok"]
+    return sum(bool(r["success"]) for r in ok) / len(ok) if ok else None
+
+
+def summarize(records: list[dict], env: Envelope) -> dict:
+    """Per shape and friction: the success map, the gripping range and the payload."""
+    pts = env.points()
+    out: dict = {"grip_tension_N": env.grip_tension, "held_fraction": HELD_FRACTION, "shapes": {},
+                 "errors": sum(r["status"] != "ok" for r in records),
+                 "warnings": sum(r["warnings"] for r in records), "envelope_hash": env.hash()}
+    for shape in env.shapes:
+        for mu in env.frictions:
+            grid = {}
+            for k, (s, w, m, f) in enumerate(pts):
+                if s == shape and f == mu:
+                    grid[(w, m)] = held_fraction(records, k)
+            held = {wm for wm, frac in grid.items() if frac is not None and frac >= HELD_FRACTION - 1e-9}
+            light = min(env.masses)
+            sizes = sorted(w for w, m in held if m == light)
+            key = shape if len(env.frictions) == 1 else f"{shape}@mu{mu:g}"
+            out["shapes"][key] = {
+                "friction": mu,
+                "gripping_range_m": [sizes[0], sizes[-1]] if sizes else None,
+                "payload_kg": max((m for _, m in held), default=None),
+                "map": [{"size_m": w, "mass_kg": m, "success": frac} for (w, m), frac in sorted(grid.items())],
+            }
+    return out
+
+
+def write_maps(records: list[dict], env: Envelope, out: Path) -> list[Path]:
+    """One PNG per shape: success fraction over size × mass at the first friction."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from gripper.core.atomic import write_atomic
+
+    pts = env.points()
+    mu = env.frictions[0]
+    files = []
+    for shape in env.shapes:
+        z = np.full((len(env.masses), len(env.sizes)), np.nan)
+        for k, (s, w, m, f) in enumerate(pts):
+            if s == shape and f == mu:
+                frac = held_fraction(records, k)
+                z[env.masses.index(m), env.sizes.index(w)] = np.nan if frac is None else frac
+        fig, ax = plt.subplots(figsize=(6.0, 3.6))
+        im = ax.imshow(z, origin="lower", cmap="RdYlGn", vmin=0, vmax=1, aspect="auto")
+        ax.set_xticks(range(len(env.sizes)), [f"{w * 1e3:g}" for w in env.sizes])
+        ax.set_yticks(range(len(env.masses)), [f"{m:g}" for m in env.masses])
+        ax.set_xlabel("width [mm] (sphere: diameter)")
+        ax.set_ylabel("mass [kg]")
+        ax.set_title(f"{shape}: success over {env.trials} trials, grip {env.grip_tension:g} N, μ = {mu:g}")
+        for (i, j), v in np.ndenumerate(z):
+            if np.isfinite(v):
+                ax.text(j, i, f"{v:.2f}", ha="center", va="center", fontsize=7)
+        fig.colorbar(im, ax=ax, label="success fraction")
+        fig.tight_layout()
+        path = out / f"map_{shape}.png"
+        write_atomic(path, lambda tmp, fig=fig: fig.savefig(tmp, dpi=110, format="png"))
+        plt.close(fig)
+        files.append(path)
+    return files
