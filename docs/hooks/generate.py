@@ -3,7 +3,8 @@
 - ``<!-- cli-reference -->``: every ``gripper`` subcommand's ``--help``, from the parser itself;
 - ``<!-- trial-record-schema -->``: the trial record's JSON schema;
 - ``<!-- protocol-table -->``: the grasp protocol's fields (unit, allowed, source) from their
-  metadata.
+  metadata;
+- ``<!-- sensing-table -->``: the servo sensing model's fields, likewise.
 """
 
 from __future__ import annotations
@@ -42,8 +43,19 @@ def _protocol_table() -> str:
     return "\n".join(lines)
 
 
+def _sensing_table() -> str:
+    from gripper.core.fields import field_specs
+    from gripper.sim.sensing import ServoSensing
+
+    lines = ["| field | default | unit | allowed | source |", "|---|---|---|---|---|"]
+    for name, spec in field_specs(ServoSensing).items():
+        lines.append(f"| sensing.{name} | {getattr(ServoSensing(), name):.4g} | {spec.unit} | {spec.allowed()} "
+                     f"| {spec.source} |")
+    return "\n".join(lines)
+
+
 MARKERS = {"<!-- cli-reference -->": _cli_reference, "<!-- trial-record-schema -->": _schema,
-           "<!-- protocol-table -->": _protocol_table}
+           "<!-- protocol-table -->": _protocol_table, "<!-- sensing-table -->": _sensing_table}
 
 
 def on_page_markdown(markdown: str, **kwargs) -> str:

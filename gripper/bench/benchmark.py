@@ -87,6 +87,10 @@ class BenchConfig(Validated):
         self.params.validate()
         self.protocol.validate()
         self.noise.validate()
+        if self.protocol.policy == "controller":
+            from gripper.experiments.controller import check_grip_tension
+
+            check_grip_tension(self.protocol.grip_tension, self.params.servo.max_cable_tension)
         return self
 
     def identity(self) -> dict:

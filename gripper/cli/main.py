@@ -288,9 +288,9 @@ def _cmd_pullout(args) -> int:
 
     objects = _csv_objects(args.objects)
     policy = args.policy
-    grips = _csv_floats(args.grip_tension, "--grip-tension") if policy == "controller" else (None,)
-    protos = [GraspProtocol(policy=policy, **({"grip_tension": g} if g is not None else {})).validate()
-              for g in grips]
+    base = GraspProtocol(policy=policy)
+    grips = _csv_floats(args.grip_tension, "--grip-tension") if policy == "controller" else (base.grip_tension,)
+    protos = [base.replace(grip_tension=g) for g in grips]
     if args.plot:
         from gripper.render.figures import check_png_path
 

@@ -119,3 +119,16 @@ class GripController:
         self.goal[:] = 0.0
         self.state[:] = HOLDING
         self.released = True
+
+
+def check_grip_tension(grip_tension: float, max_tension: float) -> None:
+    """Refuse a set-point the servo cannot reach: above its stall tension (stall torque / spool
+    radius), or at or below the contact threshold (the controller could not tell contact from
+    its set-point).
+
+    Raises:
+        ValueError: naming ``protocol.grip_tension`` and the allowed range.
+    """
+    if not CONTACT_TENSION < grip_tension <= max_tension:
+        raise ValueError(f"protocol.grip_tension: must be in ({CONTACT_TENSION:g}, {max_tension:.1f}] N (above "
+                         f"the contact threshold, at most the servo's stall tension), got {grip_tension!r}")

@@ -28,6 +28,9 @@ POLICIES = ("controller", "per_object")
 # The controller's default grip set-point [N of cable tension per finger] (docs/controller.md:
 # chosen on seed 0, verified on seed 1).
 GRIP_TENSION = 5.0
+# The documented set-point range [N]: from where the light rigid parts are still held every time
+# to where the balloon is still whole (tests/test_controller.py checks both ends).
+GRIP_TENSION_RANGE = (3.0, 10.0)
 
 
 @dataclass(frozen=True)

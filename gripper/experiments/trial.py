@@ -28,7 +28,7 @@ from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
 from gripper.core.units import DEG
-from gripper.experiments.controller import GripController
+from gripper.experiments.controller import GripController, check_grip_tension
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
 from gripper.objects.library import (
@@ -131,6 +131,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
     close_rate = proto.close_speed / p.servo.spool_radius  # rad/s of spool
     grip = None
     if proto.policy == "controller":
+        check_grip_tension(proto.grip_tension, p.servo.max_cable_tension)
         kp, _ = p.servo.datasheet.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
                                            damping_ratio=p.servo.damping_ratio)
         grip = GripController(m, probe.servo, sensor, grip_tension=proto.grip_tension, close_rate=close_rate,

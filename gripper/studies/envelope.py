@@ -93,8 +93,11 @@ class Envelope:
             raise fail("trials", f"must be an integer in [1, 1000], got {self.trials!r}")
         if isinstance(self.seed, bool) or not isinstance(self.seed, int):
             raise fail("seed", f"must be an integer, got {self.seed!r}")
+        from gripper.experiments.controller import check_grip_tension
+
         try:
             self.protocol()
+            check_grip_tension(self.grip_tension, self.params.servo.max_cable_tension)
         except ValueError as e:
             raise fail("grip_tension", str(e).split(": ", 1)[-1]) from None
         return self
@@ -280,7 +283,11 @@ def write_maps(records: list[dict], env: Envelope, out: Path) -> list[Path]:
         fig.colorbar(im, ax=ax, label="success fraction")
         fig.tight_layout()
         path = out / f"map_{shape}.png"
-        write_atomic(path, lambda tmp, fig=fig: fig.savefig(tmp, dpi=110, format="png"))
+
+        def save(tmp: str, fig=fig) -> None:
+            fig.savefig(tmp, dpi=110, format="png")
+
+        write_atomic(path, save)
         plt.close(fig)
         files.append(path)
     return files
