@@ -60,6 +60,10 @@ _EXPORTS = {
     "success_plot": "gripper.render.figures",
     "load_study": "gripper.studies.study",
     "run_study": "gripper.studies.study",
+    "Envelope": "gripper.studies.envelope",
+    "load_envelope": "gripper.studies.envelope",
+    "run_envelope": "gripper.studies.envelope",
+    "ServoSensing": "gripper.sim.sensing",
     "Calibration": "gripper.calibration.calfile",
     "apply_calibration": "gripper.calibration.calfile",
     "design_hash": "gripper.calibration.calfile",
@@ -87,6 +91,8 @@ if TYPE_CHECKING:  # static checkers and IDEs see the real names
     from gripper.objects.library import GraspObject, Placement, get_object, mesh_object
     from gripper.render.figures import bending_figure, success_plot
     from gripper.render.video import record_trial_video
+    from gripper.sim.sensing import ServoSensing
+    from gripper.studies.envelope import Envelope, load_envelope, run_envelope
     from gripper.studies.study import load_study, run_study
 
 

@@ -317,7 +317,9 @@ def _cmd_envelope(args) -> int:
     from gripper.studies.envelope import load_envelope, run_envelope
 
     check_output_dir(args.out)
-    env = load_envelope(args.file, trials=args.trials, seed=args.seed, grip_tension=args.grip_tension)
+    lists = {key: (_csv_objects(v) if key == "shapes" else _csv_floats(v, f"--{key}"))
+             for key in ("shapes", "sizes", "masses", "frictions") if (v := getattr(args, key)) is not None}
+    env = load_envelope(args.file, trials=args.trials, seed=args.seed, grip_tension=args.grip_tension, **lists)
     if args.workers < 1:
         raise ValueError(f"--workers: must be >= 1, got {args.workers}")
     check_scheduler(args.scheduler)
@@ -492,6 +494,10 @@ def build_parser() -> argparse.ArgumentParser:
     ev.add_argument("file", nargs="?", default="default", metavar="FILE.toml",
                     help="an envelope file, or the shipped one by name: default (the default)")
     ev.add_argument("--out", required=True, metavar="DIR")
+    ev.add_argument("--shapes", metavar="S[,S...]", help="sphere, cylinder, box (default: the file's)")
+    ev.add_argument("--sizes", metavar="M[,M...]", help="widths [m], sphere: diameter (default: the file's)")
+    ev.add_argument("--masses", metavar="KG[,KG...]", help="masses [kg] (default: the file's)")
+    ev.add_argument("--frictions", metavar="MU[,MU...]", help="friction coefficients (default: the file's)")
     ev.add_argument("--trials", type=int, help="trials per point (default: the file's)")
     ev.add_argument("--seed", type=int, help="base seed (default: the file's)")
     ev.add_argument("--grip-tension", type=float, metavar="N", help="set-point [N] (default: the file's, "
