@@ -19,3 +19,15 @@ def kill_after_lines(cmd: list[str], path: Path, lines: int, timeout: float = 12
     os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
     return path.read_text().count("\n")
+
+
+def run_into_fresh_folder(tmp_path_factory, argv: list[str], *, text: str, filename: str) -> tuple[Path, Path]:
+    """Write ``text`` to a new ``filename`` and run ``gripper <argv> FILE --out DIR --workers 1
+    --no-progress`` into a new folder; return (file, folder). For module-scoped references."""
+    from gripper.cli.main import main
+
+    path = tmp_path_factory.mktemp("spec") / filename
+    path.write_text(text)
+    out = tmp_path_factory.mktemp("ref") / "run"
+    assert main([*argv, str(path), "--out", str(out), "--workers", "1", "--no-progress"]) == 0
+    return path, out

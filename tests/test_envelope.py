@@ -6,7 +6,7 @@ import subprocess
 import sys
 
 import pytest
-from helpers import kill_after_lines
+from helpers import kill_after_lines, run_into_fresh_folder
 
 from gripper.cli.main import main
 from gripper.studies.envelope import Envelope, envelope_object, load_envelope, summarize
@@ -21,17 +21,9 @@ seed = 3
 
 
 @pytest.fixture(scope="module")
-def spec(tmp_path_factory):
-    path = tmp_path_factory.mktemp("envelope") / "small.toml"
-    path.write_text(SPEC)
-    return path
-
-
-@pytest.fixture(scope="module")
-def reference(spec, tmp_path_factory):
-    out = tmp_path_factory.mktemp("envelope_ref") / "w1"
-    assert main(["envelope", str(spec), "--workers", "1", "--no-progress", "--out", str(out)]) == 0
-    return out
+def ref_run(tmp_path_factory):
+    """(the spec file, the folder of its run at 1 worker)."""
+    return run_into_fresh_folder(tmp_path_factory, ["envelope"], text=SPEC, filename="small.toml")
 
 
 def _records(out):
@@ -39,7 +31,8 @@ def _records(out):
             for line in (out / "trials.jsonl").read_text().splitlines()]
 
 
-def test_outputs_and_two_workers_give_the_same_records(spec, reference, tmp_path):
+def test_outputs_and_two_workers_give_the_same_records(ref_run, tmp_path):
+    spec, reference = ref_run
     for name in ("envelope.csv", "summary.json", "map_sphere.png", "map_box.png"):
         assert (reference / name).is_file(), name
     rows = (reference / "envelope.csv").read_text().splitlines()
@@ -50,7 +43,8 @@ def test_outputs_and_two_workers_give_the_same_records(spec, reference, tmp_path
     assert all(r["warnings"] == 0 and r["status"] == "ok" for r in _records(out))
 
 
-def test_sigkill_then_resume_loses_and_repeats_nothing(spec, reference, tmp_path):
+def test_sigkill_then_resume_loses_and_repeats_nothing(ref_run, tmp_path):
+    spec, reference = ref_run
     out = tmp_path / "killed"
     cmd = [sys.executable, "-m", "gripper.cli.main", "envelope", str(spec), "--workers", "1", "--no-progress",
            "--out", str(out)]
