@@ -81,7 +81,7 @@ class GripController:
         """Begin closing now: set the servos' current limit and note the start time."""
         self.m.actuator_forcelimited[self.servo] = 1
         self.m.actuator_forcerange[self.servo] = [-self.torque_limit, self.torque_limit]
-        self.t0 = float(d.time)
+        self.t0 = self.t_prev = float(d.time)
 
     def goals(self, t: np.ndarray) -> np.ndarray:
         """The goal positions (len(t), fingers) over the next chunk, ``t`` from its start [s]."""
@@ -90,14 +90,18 @@ class GripController:
         g[:, closing] += self.rate * np.asarray(t)[:, None]
         return np.minimum(g, self.travel)
 
-    def update(self, d: mujoco.MjData, chunk_s: float) -> None:
-        """Read the servos at the chunk's end and move every finger's state on."""
+    def update(self, d: mujoco.MjData) -> None:
+        """Read the servos at the chunk's end and move every finger's state on (the goals
+        advance by the steps the chunk took, whatever its length)."""
+        h = self.m.opt.timestep
+        steps = round((float(d.time) - self.t_prev) / h)
+        self.t_prev = float(d.time)
         r = self.sensor.read(d.sensordata)
         self.last = r
         if self.released:
             return
         closing = self.state == CLOSING
-        self.goal[closing] = np.minimum(self.travel, self.goal[closing] + self.rate * chunk_s)
+        self.goal[closing] = np.minimum(self.travel, self.goal[closing] + self.rate * (steps * h))
         t = float(d.time) - self.t0
         touched = closing & np.isnan(self.contact_time) & (
             (r.tension >= CONTACT_TENSION) | (self.goal - r.position >= CONTACT_LAG))

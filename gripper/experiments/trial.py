@@ -1,12 +1,14 @@
-"""One scripted grasp trial, and the pull-out test, on the gripper with one object.
+"""One grasp trial on the gripper with one object.
 
-The trial is open loop (every command is a function of time), so each phase is stepped with
-``mujoco.rollout`` in chunks of ``protocol.chunk_steps`` steps on the trial's own ``MjData``;
-between chunks the runner checks stability (MuJoCo warnings, non-finite state), slip and
-damage. Cable tension is the tendon-limit force sensor, recorded at every step by the rollout;
-per-finger contact force is the sum of the normal forces of all contacts between that finger's
-elements and the object, read from the contact list at the end of every chunk (so peaks are
-sampled every ``chunk_steps`` steps, 40 ms by default at the 2 ms step).
+Within a chunk of ``protocol.chunk_steps`` steps every command is a function of time, so each
+phase is stepped with ``mujoco.rollout`` chunk by chunk on the trial's own ``MjData``; between
+chunks the runner checks stability (MuJoCo warnings, non-finite state), slip and damage, and the
+grasp controller (:mod:`gripper.experiments.controller`) reads the servos and sets the next
+chunk's goals, so a chunk is also its control period. Cable tension is the tendon-limit force
+sensor, recorded at every step by the rollout; per-finger contact force is the sum of the
+normal forces of all contacts between that finger's elements and the object, read from the
+contact list at the end of every chunk (so peaks are sampled every ``chunk_steps`` steps, 40 ms
+by default at the 2 ms step).
 
 Example:
     >>> from gripper.experiments.trial import run_trial
@@ -125,7 +127,6 @@ def run_protocol(m, d, p, obj, proto, probe, rec, sensor: ServoSensor | None = N
 def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
     m, d = stepper.m, stepper.d
     ch = proto.chunk_steps
-    chunk_s = ch * m.opt.timestep
     z_grasp = grasp_height(p, obj, proto) - p.lift.home_height  # lift_z set-point [m]
     travel = float(m.actuator_ctrlrange[probe.servo[0], 1])
     close_rate = proto.close_speed / p.servo.spool_radius  # rad/s of spool
@@ -142,8 +143,8 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
     def ctrl(servo, z, x=None):
         def fn(t):
             u = np.zeros((len(t), m.nu))
-            s = np.asarray(servo(t)) if callable(servo) else servo
-            u[:, probe.servo] = s if np.ndim(s) == 2 else np.asarray(s)[..., None] if np.ndim(s) else s
+            s = np.asarray(servo(t) if callable(servo) else servo, dtype=float)
+            u[:, probe.servo] = s[:, None] if s.ndim == 1 else s  # one goal for all, or one per finger
             u[:, probe.lift_z] = z(t) if callable(z) else z
             if x is not None:
                 u[:, probe.lift_x] = x(t)
@@ -164,7 +165,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
         grip.start(d)
 
         def closed(dd):
-            grip.update(dd, chunk_s)
+            grip.update(dd)
             return not math.isnan(grip.grip_time) and dd.time - grip.t0 >= grip.grip_time + proto.close_hold_s
 
         run_phase(stepper, probe, rec, ctrl(servo_cmd, z_grasp), travel / close_rate + proto.close_hold_s, ch,
@@ -173,7 +174,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
     sensed["grasp"] = sensor.read(d.sensordata).to_dict()
     t_lift = proto.lift_height / proto.lift_speed
     z_top = z_grasp + proto.lift_height
-    on_grip = (lambda dd: grip.update(dd, chunk_s)) if grip is not None else None
+    on_grip = grip.update if grip is not None else None
 
     def chained(*fns):
         def fn(dd):

@@ -18,14 +18,15 @@ Every (shape, size, mass, friction) point is a rigid object: a sphere of that di
 upright cylinder or square box of that width and :data:`ENVELOPE_HEIGHT` height (the library's
 block and cylinder height), never damaged. Each runs ``trials`` benchmark trials (the default
 protocol with ``policy = "controller"``, the default placement noise). Objects wider than the
-open fingers are allowed: the fingers then land on them and the trial fails, which is what the
-envelope is to show.
+open fingers are allowed: the fingers then land on them, which the envelope is to show (mostly
+a failure; a wide box can be pinched by its top edges).
 
 Output folder: ``envelope.json`` (the spec and its hash; a rerun with another spec is refused),
 ``trials.jsonl`` (one record per trial, resumable as the benchmark's), ``envelope.csv`` (tidy:
 one row per trial), ``summary.json`` and one ``map_<shape>.png`` per shape (success fraction over
-size × mass, at the first friction). Derived figures, per shape and friction: a point is *held*
-when at least two thirds of its trials succeed; the **gripping range** is the smallest and the
+size × mass; ``map_<shape>_mu<friction>.png`` per shape and friction when several are swept).
+Derived figures, per shape and friction: a point is *held* when at least two thirds of its
+trials succeed; the **gripping range** is the smallest and the
 largest size held at the lightest mass, the **payload** the largest mass held at any size.
 
 Example:
@@ -252,7 +253,8 @@ def summarize(records: list[dict], env: Envelope) -> dict:
 
 
 def write_maps(records: list[dict], env: Envelope, out: Path) -> list[Path]:
-    """One PNG per shape: success fraction over size × mass at the first friction."""
+    """One PNG per shape and friction: success fraction over size × mass (``map_<shape>.png``
+    with one friction, ``map_<shape>_mu<friction>.png`` with several)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -262,9 +264,8 @@ def write_maps(records: list[dict], env: Envelope, out: Path) -> list[Path]:
     from gripper.core.atomic import write_atomic
 
     pts = env.points()
-    mu = env.frictions[0]
     files = []
-    for shape in env.shapes:
+    for shape, mu in ((s, f) for s in env.shapes for f in env.frictions):
         z = np.full((len(env.masses), len(env.sizes)), np.nan)
         for k, (s, w, m, f) in enumerate(pts):
             if s == shape and f == mu:
@@ -282,7 +283,7 @@ def write_maps(records: list[dict], env: Envelope, out: Path) -> list[Path]:
                 ax.text(j, i, f"{v:.2f}", ha="center", va="center", fontsize=7)
         fig.colorbar(im, ax=ax, label="success fraction")
         fig.tight_layout()
-        path = out / f"map_{shape}.png"
+        path = out / (f"map_{shape}.png" if len(env.frictions) == 1 else f"map_{shape}_mu{mu:g}.png")
 
         def save(tmp: str, fig=fig) -> None:
             fig.savefig(tmp, dpi=110, format="png")
