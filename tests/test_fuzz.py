@@ -163,7 +163,13 @@ def stand_ins(monkeypatch):
     summary = {"objects": {}, "config_hash": "0", "versions": {}, "wall_time_s": 0.0}
     monkeypatch.setattr(bench, "run_benchmark", fake("bench", summary))
     monkeypatch.setattr(bench, "format_table", lambda s: "")
-    monkeypatch.setattr(study, "run_study", fake("study", []))
+    def fake_study(st_, out, **_):  # writes what the command prints back: recommendations.md
+        CALLED.append("study")
+        Path(out).mkdir(parents=True, exist_ok=True)
+        (Path(out) / "recommendations.md").write_text("stand-in\n")
+        return []
+
+    monkeypatch.setattr(study, "run_study", fake_study)
     monkeypatch.setattr(pipeline, "calibrate", fake("calibrate", ValueError("stand-in: not run")))
     monkeypatch.setattr(video, "record_trial_video", fake("video", ValueError("stand-in: not run")))
 

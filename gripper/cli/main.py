@@ -125,15 +125,20 @@ def _csv_objects(text: str) -> tuple[str, ...]:
     return names
 
 
+def _check_runner(args) -> None:
+    """Refuse a bad --workers or an unreachable --scheduler before any work."""
+    if args.workers < 1:
+        raise ValueError(f"--workers: must be >= 1, got {args.workers}")
+    check_scheduler(args.scheduler)
+
+
 def _cmd_bench(args) -> int:
     from gripper.bench.benchmark import BenchConfig, format_table, run_benchmark
 
     if args.trials < 1:
         raise ValueError(f"--trials: must be >= 1, got {args.trials}")
-    if args.workers < 1:
-        raise ValueError(f"--workers: must be >= 1, got {args.workers}")
     check_output_dir(args.out)
-    check_scheduler(args.scheduler)
+    _check_runner(args)
     proto, noise = _protocol_and_noise(args)
     cfg = BenchConfig(objects=_csv_objects(args.objects), trials=args.trials, seed=args.seed,
                       params=_params(args), protocol=proto, noise=noise).validate()
@@ -260,9 +265,7 @@ def _cmd_study(args) -> int:
 
     check_output_dir(args.out)
     study = load_study(args.file)
-    if args.workers < 1:
-        raise ValueError(f"--workers: must be >= 1, got {args.workers}")
-    check_scheduler(args.scheduler)
+    _check_runner(args)
     records = run_study(study, args.out, workers=args.workers, scheduler=args.scheduler,
                         progress=not args.no_progress)
     failed = sum(r["status"] != "ok" for r in records)
@@ -320,9 +323,7 @@ def _cmd_envelope(args) -> int:
     lists = {key: (_csv_objects(v) if key == "shapes" else _csv_floats(v, f"--{key}"))
              for key in ("shapes", "sizes", "masses", "frictions") if (v := getattr(args, key)) is not None}
     env = load_envelope(args.file, trials=args.trials, seed=args.seed, grip_tension=args.grip_tension, **lists)
-    if args.workers < 1:
-        raise ValueError(f"--workers: must be >= 1, got {args.workers}")
-    check_scheduler(args.scheduler)
+    _check_runner(args)
     summary = run_envelope(env, args.out, workers=args.workers, scheduler=args.scheduler,
                            progress=not args.no_progress)
     print(f"capability envelope at a grip of {summary['grip_tension_N']:g} N "
@@ -377,6 +378,13 @@ def build_parser() -> argparse.ArgumentParser:
                        help="per_object: multiplier on each object's closing command (default %(default)s; "
                             ">1 squeezes harder)")
         p.add_argument("--release", action="store_true", help="open the fingers at the end of each trial")
+        return p
+
+    def with_runner(p):
+        p.add_argument("--workers", type=int, default=DEFAULT_WORKERS,
+                       help="local worker processes (default %(default)s)")
+        p.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786")
+        p.add_argument("--no-progress", action="store_true", help="no progress bar")
         return p
 
     def with_params(p):
@@ -446,11 +454,8 @@ def build_parser() -> argparse.ArgumentParser:
     bn.add_argument("--objects", default=",".join(DEFAULT_OBJECTS), help="comma-separated names")
     bn.add_argument("--trials", type=int, default=DEFAULT_TRIALS, help="trials per object (default %(default)s)")
     bn.add_argument("--seed", type=int, default=0, help="base seed (default 0)")
-    bn.add_argument("--workers", type=int, default=DEFAULT_WORKERS, help="local worker processes (default %(default)s)")
-    bn.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786")
     bn.add_argument("--out", default="runs/bench", metavar="DIR", help="output folder (default runs/bench)")
-    with_protocol(bn)
-    bn.add_argument("--no-progress", action="store_true", help="no progress bar")
+    with_runner(with_protocol(bn))
     bn.add_argument("--plot", metavar="FILE.png", help="also write the success rates with Wilson 95 %% intervals")
     bn.set_defaults(func=_cmd_bench)
 
@@ -480,9 +485,7 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("file", metavar="FILE.toml",
                     help="a study file, or a shipped study by name: one_at_a_time, latin_hypercube")
     st.add_argument("--out", required=True, metavar="DIR")
-    st.add_argument("--workers", type=int, default=DEFAULT_WORKERS, help="local worker processes (default %(default)s)")
-    st.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://127.0.0.1:8786")
-    st.add_argument("--no-progress", action="store_true")
+    with_runner(st)
     st.set_defaults(func=_cmd_study)
 
     ev = sub.add_parser(
@@ -502,9 +505,7 @@ def build_parser() -> argparse.ArgumentParser:
     ev.add_argument("--seed", type=int, help="base seed (default: the file's)")
     ev.add_argument("--grip-tension", type=float, metavar="N", help="set-point [N] (default: the file's, "
                     "else the protocol's)")
-    ev.add_argument("--workers", type=int, default=DEFAULT_WORKERS, help="local worker processes (default %(default)s)")
-    ev.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786")
-    ev.add_argument("--no-progress", action="store_true", help="no progress bar")
+    with_runner(ev)
     ev.set_defaults(func=_cmd_envelope)
 
     cal = sub.add_parser(
