@@ -51,6 +51,8 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     rel0 = probe.object_pos(d) - d.xpos[probe.palm]
     u = d.ctrl.copy()
     dt = m.opt.timestep
+    out = {"object": obj.name, "slip_m": slip, "rate_N_per_s": rate, "policy": proto.policy,
+           "grip_tension_N": grasp.get("grip_tension_N")}
     force = 0.0
     while force < max_force:
         force = min(max_force, force + rate * dt)
@@ -59,9 +61,5 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
         mujoco.mj_step(m, d)
         check_stable(m, d, "pull-out")
         if np.linalg.norm(probe.object_pos(d) - d.xpos[probe.palm] - rel0) >= slip:
-            return {"object": obj.name, "holding_force_N": force, "held_at_max": False,
-                    "slip_m": slip, "rate_N_per_s": rate, "policy": proto.policy,
-                    "grip_tension_N": grasp.get("grip_tension_N")}
-    return {"object": obj.name, "holding_force_N": max_force, "held_at_max": True,
-            "slip_m": slip, "rate_N_per_s": rate, "policy": proto.policy,
-            "grip_tension_N": grasp.get("grip_tension_N")}
+            return {**out, "holding_force_N": force, "held_at_max": False}
+    return {**out, "holding_force_N": max_force, "held_at_max": True}
