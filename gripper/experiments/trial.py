@@ -185,7 +185,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
         return fn
 
     lift = ctrl(hold_cmd, lambda t: z_grasp + proto.lift_height * np.minimum(1.0, t / t_lift))
-    run_phase(stepper, probe, rec, lift, t_lift + proto.lift_settle_s, ch, "lift", on_grip and chained(on_grip))
+    run_phase(stepper, probe, rec, lift, t_lift + proto.lift_settle_s, ch, "lift", on_grip)
 
     def rel(dd):
         return probe.object_pos(dd) - dd.xpos[probe.palm]

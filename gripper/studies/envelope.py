@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import json
 import math
 import os
 import tomllib
@@ -46,6 +47,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from gripper.bench.defaults import DEFAULT_WORKERS
+from gripper.core.atomic import write_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
@@ -197,11 +199,7 @@ def run_envelope(env: Envelope, out: str | Path, *, workers: int = DEFAULT_WORKE
     records = [done[j] for j in jobs]
     write_table(records, out / "envelope.csv")
     summary = summarize(records, env)
-    tmp = out / "summary.json.tmp"
-    import json
-
-    tmp.write_text(json.dumps(summary, indent=2, sort_keys=True))
-    os.replace(tmp, out / "summary.json")
+    write_atomic(out / "summary.json", lambda tmp: Path(tmp).write_text(json.dumps(summary, indent=2, sort_keys=True)))
     write_maps(records, env, out)
     return summary
 
@@ -221,15 +219,20 @@ def write_table(records: list[dict], path: Path) -> None:
     os.replace(tmp, path)
 
 
-def held_fraction(records: list[dict], point: int) -> float | None:
-    """Success fraction of one point's trials without error (None if all errored)."""
-    ok = [r for r in records if r["point"] == point and r["status"] == "ok"]
-    return sum(bool(r["success"]) for r in ok) / len(ok) if ok else None
+def held_fractions(records: list[dict]) -> dict[int, float | None]:
+    """Per point: the success fraction of its trials without error (None if all errored)."""
+    ok: dict[int, list[bool]] = {}
+    for r in records:
+        ok.setdefault(r["point"], [])
+        if r["status"] == "ok":
+            ok[r["point"]].append(bool(r["success"]))
+    return {k: sum(v) / len(v) if v else None for k, v in ok.items()}
 
 
 def summarize(records: list[dict], env: Envelope) -> dict:
     """Per shape and friction: the success map, the gripping range and the payload."""
     pts = env.points()
+    frac_of = held_fractions(records)
     out: dict = {"grip_tension_N": env.grip_tension, "held_fraction": HELD_FRACTION, "shapes": {},
                  "errors": sum(r["status"] != "ok" for r in records),
                  "warnings": sum(r["warnings"] for r in records), "envelope_hash": env.hash()}
@@ -238,7 +241,7 @@ def summarize(records: list[dict], env: Envelope) -> dict:
             grid = {}
             for k, (s, w, m, f) in enumerate(pts):
                 if s == shape and f == mu:
-                    grid[(w, m)] = held_fraction(records, k)
+                    grid[(w, m)] = frac_of.get(k)
             held = {wm for wm, frac in grid.items() if frac is not None and frac >= HELD_FRACTION - 1e-9}
             light = min(env.masses)
             sizes = sorted(w for w, m in held if m == light)
@@ -261,15 +264,14 @@ def write_maps(records: list[dict], env: Envelope, out: Path) -> list[Path]:
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from gripper.core.atomic import write_atomic
-
     pts = env.points()
+    frac_of = held_fractions(records)
     files = []
     for shape, mu in ((s, f) for s in env.shapes for f in env.frictions):
         z = np.full((len(env.masses), len(env.sizes)), np.nan)
         for k, (s, w, m, f) in enumerate(pts):
             if s == shape and f == mu:
-                frac = held_fraction(records, k)
+                frac = frac_of.get(k)
                 z[env.masses.index(m), env.sizes.index(w)] = np.nan if frac is None else frac
         fig, ax = plt.subplots(figsize=(6.0, 3.6))
         im = ax.imshow(z, origin="lower", cmap="RdYlGn", vmin=0, vmax=1, aspect="auto")
