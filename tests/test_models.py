@@ -48,3 +48,19 @@ def test_squashed_teeth_lock_holds_whipped_long_fingers():
     lock = p.finger.closure_angle_deg * DEG + teeth_lock_angle(p.finger)
     assert m.tendon_range[stop] == pytest.approx([-p.finger.extension_limit_deg * DEG, lock])
     assert m.tendon_solref_lim[stop, 0] == pytest.approx(4 * p.sim.timestep)
+
+
+def test_the_closed_cuts_match_is_reused_bitwise():
+    """The second scene of a design takes the first one's tuned limits: the same model."""
+    import numpy as np
+
+    from gripper.objects.library import Placement, get_object
+    from gripper.sim import scene
+
+    p = GripperParams().replace(sim=GripperParams().sim.replace(timestep=0.002))
+    scene._LIMITS.clear()
+    first = scene.build_grasp_scene(p, get_object("block"), Placement())
+    assert len(scene._LIMITS) == 1
+    again = scene.build_grasp_scene(p, get_object("block"), Placement())
+    for field in ("jnt_solref", "jnt_solimp", "jnt_range", "jnt_stiffness", "body_mass", "geom_size"):
+        assert np.array_equal(getattr(first, field), getattr(again, field)), field

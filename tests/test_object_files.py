@@ -147,6 +147,14 @@ def test_a_round_mesh_is_sized_by_its_footprint_not_its_bounding_box(tmp_path):
     ("[object]\nname='x'\nkind='mesh'\nmesh='nowhere.stl'\nfriction=1\n[damage]\ncriterion='none'\n",
      "object.mesh: mesh: file not found"),
     ("[object\n", "not valid TOML"),
+    ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\nmesh_points=[4,4,5]\n"
+     "[damage]\ncriterion='none'\n", "object.mesh_points: a rigid_box is rigid: it takes no mesh resolution"),
+    ("[object]\nname='x'\nkind='bag'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\nclose_command=1.5\n"
+     "mesh_points=[4,4,2]\n[damage]\nlimit=0.1\n[material]\nyoungs_modulus=2e8\nthickness=5e-5\n",
+     r"object.mesh_points: must be three whole numbers from 3 to 12 \(points along x, y, z\), got \[4, 4, 2\]"),
+    ("[object]\nname='x'\nkind='bag'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\nclose_command=1.5\n"
+     "mesh_points=[4.5,4,5]\n[damage]\nlimit=0.1\n[material]\nyoungs_modulus=2e8\nthickness=5e-5\n",
+     "object.mesh_points: must be three whole numbers"),
 ])
 def test_a_bad_object_file_names_the_file_and_the_key(tmp_path, text, message):
     f = _write(tmp_path / "bad.toml", text)
@@ -177,7 +185,7 @@ def test_the_environment_takes_an_object_file(user_files):
     import gymnasium as gym
 
     _, part = user_files
-    env = gym.make("gripper:SoftGripperGrasp-v2", objects=f"block,{part}")
+    env = gym.make("gripper:SoftGripperGrasp-v3", objects=f"block,{part}")
     env.reset(seed=1)
     names = set()
     for seed in range(4):

@@ -64,10 +64,26 @@ def test_wilson_interval_known_values():
 
 
 def test_paper_box_shell_is_closed_and_compiles():
-    from gripper.objects.library import PAPER_BOX_COUNT, box_shell
+    from gripper.objects.library import box_shell
     from gripper.sim.scene import build_grasp_scene
     obj = get_object("paper_box")
-    mesh = box_shell(obj.size, PAPER_BOX_COUNT)
+    mesh = box_shell(obj.size, obj.mesh_points)
     assert mesh.is_watertight and mesh.volume == pytest.approx(8 * obj.size[0] * obj.size[1] * obj.size[2])
     m = build_grasp_scene(GripperParams(), obj, Placement())
     assert m.nflex == 1 and m.flex_vertnum[0] == len(mesh.vertices)
+    # a closed grid surface of nx x ny x nz points: 2 (nx ny + ny nz + nz nx) - 4 (nx + ny + nz) + 8 vertices
+    nx, ny, nz = obj.mesh_points
+    assert len(mesh.vertices) == 2 * (nx * ny + ny * nz + nz * nx) - 4 * (nx + ny + nz) + 8
+
+
+@pytest.mark.parametrize("name", ["paper_box", "bag", "balloon"])
+def test_the_mesh_resolution_reaches_the_flex(name):
+    import dataclasses
+
+    from gripper.sim.scene import build_grasp_scene
+    obj = get_object(name)
+    counts = {}
+    for pts in (obj.mesh_points, (6, 6, 7)):
+        m = build_grasp_scene(GripperParams(), dataclasses.replace(obj, mesh_points=pts), Placement())
+        counts[pts] = int(m.flex_vertnum[0])
+    assert counts[(6, 6, 7)] > counts[obj.mesh_points]

@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v2``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v3``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v2")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v3")``.
 """
 
 from __future__ import annotations
@@ -186,7 +186,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v2", **kwargs)``:
+    ``gymnasium.make("gripper:SoftGripperGrasp-v3", **kwargs)``:
 
     | argument | default | meaning |
     |---|---|---|
@@ -232,10 +232,14 @@ class SoftGripperGraspEnv(gym.Env):
     - v2, package 0.9.0: the observation gains the servos' sensed position, current and spool
       tension (96 entries, was 84). The dynamics, rewards and episode rules are unchanged.
       v1 is no longer registered.
+    - v3, package 0.10.0: the paper box's and the bag's meshes are 4 x 4 x 5 points (were
+      5 x 5 x 6; their convergence check is in ``docs/performance.md``), so episodes with those
+      objects have other dynamics; the rigid objects and the balloon are unchanged, and so are
+      the spaces, rewards and episode rules. v2 is no longer registered.
 
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v2", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v3", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """

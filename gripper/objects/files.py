@@ -11,6 +11,7 @@ Format (``docs/objects.md`` has a worked example)::
     friction = 0.6                 # against the silicone pads [-]
     yaw_symmetric = false          # default: true for cylinders and balloons
     close_command = 3.0            # [rad of spool angle]; default 3.0 (full closing) for rigid kinds
+    mesh_points = [4, 4, 5]        # deformable kinds: mesh points along x, y, z (default: the kind's)
 
     [damage]
     criterion = "contact_force"    # rigid kinds: contact_force or none; balloon, bag: strain;
@@ -41,12 +42,21 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from gripper.objects.library import DAMAGE_CRITERIA, KINDS, RIGID_CLOSE, RIGID_KINDS, GraspObject, mesh_object
+from gripper.objects.library import (
+    DAMAGE_CRITERIA,
+    DEFAULT_MESH_POINTS,
+    KINDS,
+    MESH_POINTS_RANGE,
+    RIGID_CLOSE,
+    RIGID_KINDS,
+    GraspObject,
+    mesh_object,
+)
 
 MATERIAL_KEYS = ("youngs_modulus", "thickness", "yield_strain")
 SECTIONS: dict[str, tuple[str, ...] | None] = {
     "object": ("name", "kind", "mesh", "size", "mass", "density", "friction", "yaw_symmetric",
-               "close_command"),
+               "close_command", "mesh_points"),
     "damage": ("criterion", "limit"),
     "material": MATERIAL_KEYS,
     "reasons": None,  # any key: free text
@@ -137,6 +147,20 @@ def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspO
                         default=kind in ("rigid_cylinder", "rigid_sphere", "balloon"))
     close = get(obj, "object", "close_command", "number",
                 default=RIGID_CLOSE if kind in RIGID_KINDS else None, required=kind not in RIGID_KINDS)
+    points = obj.get("mesh_points")
+    if kind not in DEFAULT_MESH_POINTS:
+        if points is not None:
+            raise fail("object.mesh_points", f"a {kind} is rigid: it takes no mesh resolution")
+        points = (0, 0, 0)
+    elif points is None:
+        points = DEFAULT_MESH_POINTS[kind]
+    else:
+        lo, hi = MESH_POINTS_RANGE
+        if not (isinstance(points, list) and len(points) == 3 and all(
+                isinstance(n, int) and not isinstance(n, bool) and lo <= n <= hi for n in points)):
+            raise fail("object.mesh_points", f"must be three whole numbers from {lo} to {hi} (points "
+                       f"along x, y, z), got {points!r}")
+        points = tuple(points)
     size = None
     if kind != "mesh":
         if "mesh" in obj:
@@ -178,6 +202,6 @@ def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspO
     try:
         return GraspObject(name=name, kind=kind, size=size, mass=mass, friction=friction,
                            yaw_symmetric=yaw_symmetric, close_command=close, damage=criterion,
-                           damage_limit=limit, reasons=reasons, **material).validate()
+                           damage_limit=limit, mesh_points=points, reasons=reasons, **material).validate()
     except ValueError as e:
         raise ValueError(f"{where}: {e}") from None

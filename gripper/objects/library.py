@@ -51,6 +51,16 @@ DAMAGE_CRITERIA = {
 }
 RIGID_KINDS = ("rigid_box", "rigid_cylinder", "rigid_sphere", "mesh")
 KINDS = (*RIGID_KINDS, "balloon", "paper_box", "bag")
+# The deformable kinds' default mesh resolution (points along x, y, z; GraspObject.mesh_points),
+# where each one's convergence check put it (docs/performance.md, "Mesh resolution"):
+# - balloon: 5 surface points per axis (99 vertices) on a 2 x 2 x 2 trilinear cage (81 dofs);
+# - paper box: 5 x 5 x 6 points (10 x 10 x 12 mm spacing, 114 vertices); 4 x 4 x 5 would halve
+#   its cost and keep the benchmark's outcomes, but its faces are 23-53 % stiffer under a finger;
+# - bag: 4 x 4 x 5 points (64 vertices: film elements of about 17 mm), half the cost of 5 x 5 x 6
+#   with the outcome and the strain inside the 4 / 5 / 6-point spread.
+DEFAULT_MESH_POINTS = {"balloon": (5, 5, 5), "paper_box": (5, 5, 6), "bag": (4, 4, 5)}
+# Allowed resolutions: flexcomp needs 3 points an axis for a closed surface; 12 is a 10-fold cost.
+MESH_POINTS_RANGE = (3, 12)
 # The open fingers' grasping faces stand this far from the palm axis in the default design
 # (layout.palm_radius): an object's horizontal footprint must fit inside [m].
 APERTURE_RADIUS = 0.040
@@ -84,6 +94,10 @@ class GraspObject(Validated):
             (kind ``mesh``; 0 for the primitives, whose footprint follows from ``size``).
         oversize: the object may be wider than the open fingers (the capability envelope's
             largest sizes: the fingers then land on it); off for library and user objects.
+        mesh_points: the deformable kinds' mesh resolution, points along x, y, z (the flexcomp's
+            ``count``; the balloon's surface points per axis); (0, 0, 0) for the rigid kinds.
+            The deformables default to :data:`DEFAULT_MESH_POINTS` (their convergence check is
+            in ``docs/performance.md``).
         reasons: (field, reason) pairs: where the numbers come from (not part of the physics,
             so not part of :meth:`to_dict`).
     """
@@ -103,6 +117,7 @@ class GraspObject(Validated):
     mesh_file: str = ""
     footprint_radius: float = 0.0
     oversize: bool = False
+    mesh_points: tuple[int, int, int] = (0, 0, 0)
     reasons: tuple[tuple[str, str], ...] = dataclasses.field(default=(), compare=False)
 
     @property
@@ -152,6 +167,16 @@ class GraspObject(Validated):
         if self.damage != "none" and (isinstance(v, bool) or not (isinstance(v, int | float)
                                                                  and math.isfinite(v) and v > 0)):
             raise ValueError(f"{where}.damage_limit: must be > 0, got {v!r}")
+        pts = self.mesh_points
+        if not (isinstance(pts, tuple) and len(pts) == 3
+                and all(isinstance(n, int) and not isinstance(n, bool) for n in pts)):
+            raise ValueError(f"{where}.mesh_points: must be three whole numbers, got {pts!r}")
+        if self.is_flex and not all(MESH_POINTS_RANGE[0] <= n <= MESH_POINTS_RANGE[1] for n in pts):
+            raise ValueError(f"{where}.mesh_points: a {self.kind} takes {MESH_POINTS_RANGE[0]} to "
+                             f"{MESH_POINTS_RANGE[1]} points along each axis, got {list(pts)}")
+        if not self.is_flex and pts != (0, 0, 0):
+            raise ValueError(f"{where}.mesh_points: a {self.kind} is rigid and has no mesh resolution, "
+                             f"got {list(pts)}")
         if self.kind == "rigid_sphere" and not (self.size[0] == self.size[1] == self.size[2]):
             raise ValueError(f"{where}.size: a sphere's three half-extents are its radius, got {list(self.size)}")
         if self.half_width > APERTURE_RADIUS and not self.oversize:
@@ -384,9 +409,8 @@ def _flex_contact(flex: mujoco.MjsFlex, friction: list[float]) -> None:
     flex.selfcollide = mujoco.mjtFlexSelf.mjFLEXSELF_NONE
 
 
-# Balloon mesh: flexcomp ellipsoid with 5 points per axis (99 surface vertices) on a trilinear
-# 2 × 2 × 2 cell grid (81 dofs): enough for local dents under each finger at ≈ 1 ms a step.
-BALLOON_COUNT = 5
+# Balloon mesh: flexcomp ellipsoid with mesh_points surface points per axis (5: 99 vertices) on a
+# trilinear 2 × 2 × 2 cell grid (81 dofs): enough for local dents under each finger.
 BALLOON_CELLS = 2
 # Rayleigh damping time of the balloon's elasticity [s]: latex and air damp the wobble within
 # a few periods; 2 ms damps the 2 × 2 × 2 mode set without slowing the squeeze.
@@ -395,10 +419,10 @@ BALLOON_DAMPING = 0.002
 
 def _add_balloon(spec, obj, pos, mass, friction) -> None:
     r = obj.size[0]
-    spacing = 2.0 * r / (BALLOON_COUNT - 1)
+    pts = obj.mesh_points
     flex = spec.worldbody.make_flex(
-        OBJECT_BODY, type="ellipsoid", dim=3, dof="trilinear", count=[BALLOON_COUNT] * 3,
-        cellcount=[BALLOON_CELLS] * 3, spacing=[spacing] * 3, radius=0.0008, mass=mass,
+        OBJECT_BODY, type="ellipsoid", dim=3, dof="trilinear", count=list(pts),
+        cellcount=[BALLOON_CELLS] * 3, spacing=[2.0 * r / (n - 1) for n in pts], radius=0.0008, mass=mass,
         inertiabox=0.002, pos=pos)
     flex.young = obj.youngs_modulus
     # air in a closed balloon resists volume change far more than shape change
@@ -408,12 +432,11 @@ def _add_balloon(spec, obj, pos, mass, friction) -> None:
     _flex_contact(flex, friction)
 
 
-# Paper box shell: a closed box surface with 5 × 5 × 6 points per edge direction (10 × 10 ×
-# 12 mm spacing), full dofs (bending plasticity needs a non-interpolated 2D flex). 4 × 4 × 5 was
-# too coarse to bend under a finger. The shell is closed (lid on, as a product box): MuJoCo's
+# Paper box shell: a closed box surface with mesh_points points per edge direction (5 × 5 × 6:
+# 10 × 10 × 12 mm spacing), full dofs (bending plasticity needs a non-interpolated 2D flex).
+# The shell is closed (lid on, as a product box): MuJoCo's
 # flexcomp "box" shell is open at the top, and its free rim creased under light grasps (4 of 50
 # default trials dented 2.1-3.5 mm at 3-8 N), which a closed carton's top face prevents.
-PAPER_BOX_COUNT = (5, 5, 6)
 # Rayleigh damping time [s] of the card: damps the shell's high modes at the 1 ms step.
 PAPER_BOX_DAMPING = 0.001
 # Paperboard Poisson ratio (0.2-0.4 in-plane).
@@ -459,7 +482,7 @@ def box_shell(half: tuple[float, float, float], counts: tuple[int, int, int]):
 def _add_paper_box(spec, obj, pos, quat, mass, friction) -> None:
     import tempfile
 
-    mesh = box_shell(obj.size, PAPER_BOX_COUNT)
+    mesh = box_shell(obj.size, obj.mesh_points)
     # make_flex reads a mesh from a file; the shell is generated, written to a temporary OBJ
     with tempfile.TemporaryDirectory() as tmp:
         path = str(Path(tmp) / "paper_box_shell.obj")
@@ -476,14 +499,13 @@ def _add_paper_box(spec, obj, pos, quat, mass, friction) -> None:
     _flex_contact(flex, friction)
 
 
-BAG_COUNT = (5, 5, 6)
 BAG_DAMPING = 0.002  # s, Rayleigh damping of the film: LDPE is lossy (tan δ ≈ 0.1)
 PE_POISSON = 0.4  # LDPE 0.35-0.45
 
 
 def _add_bag(spec, obj, pos, quat, mass, friction, mass_scale) -> None:
     r, _, hz = obj.size
-    c = BAG_COUNT
+    c = obj.mesh_points
     film_mass = BAG_FILM_MASS * mass_scale
     flex = spec.worldbody.make_flex(
         OBJECT_BODY, type="cylinder", dim=2, dof="full", count=list(c),
