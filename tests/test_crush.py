@@ -48,3 +48,16 @@ def test_crush_bad_input_is_refused(capsys):
         crush_test("balloon", 0.01, speed=0.0)
     assert main(["crush", "--objects", "teapot"]) == 2
     assert "teapot" in capsys.readouterr().err
+
+
+def test_the_paper_box_face_stiffens_as_its_mesh_coarsens():
+    """Linear-triangle shells lock: a coarser mesh of the same card resists a finger-sized press
+    more. This is why the box keeps its 5 x 5 x 6 mesh (docs/performance.md, Mesh resolution)."""
+    from gripper.experiments.press import face_press
+    from gripper.objects.library import get_object
+
+    shipped = get_object("paper_box").mesh_points
+    forces = [face_press(pts, 0.002)["peak_force_N"] for pts in ((4, 4, 5), shipped, (6, 6, 7))]
+    assert forces[0] > 1.1 * forces[1] > 1.1 * forces[2] > 0.0
+    with pytest.raises(ValueError, match=r"press.depth: must be in \(0, 0.010\] m"):
+        face_press(shipped, 0.05)
