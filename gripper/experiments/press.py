@@ -41,7 +41,8 @@ def face_press(points: tuple[int, int, int], depth: float) -> dict:
     """
     if not (isinstance(depth, int | float) and 0.0 < depth <= 0.010):
         raise ValueError(f"press.depth: must be in (0, 0.010] m, got {depth!r}")
-    obj = dataclasses.replace(get_object("paper_box"), mesh_points=tuple(points)).validate()
+    nx, ny, nz = points
+    obj = dataclasses.replace(get_object("paper_box"), mesh_points=(nx, ny, nz)).validate()
     p = GripperParams()
     p = p.replace(sim=p.sim.replace(timestep=TRIAL_TIMESTEP))
     spec = build_scene_spec(p, with_object=False)
