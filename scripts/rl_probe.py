@@ -1,0 +1,103 @@
+"""Why PPO does or does not learn the grasp: learning curves of one variant at a time.
+
+Trains Stable-Baselines3 PPO (default hyper-parameters but for ``--n-envs`` envs through the
+native vector env's SB3 adapter) on ``SoftGripperGrasp`` and, every ``--every`` steps, records
+the training episodes' success rate and return (SB3's episode buffers, last 100 episodes) and the
+deterministic policy's success over ``--eval`` episodes with seeds never used in training.
+Writes one CSV row per checkpoint to ``--out`` and prints them. Needs the ``rl`` extra.
+
+Variants (``--variant``), each one change from ``issue`` (the setup of issue 25: block, synergy
+actions, dense reward):
+
+- ``issue``: as the environment ships;
+- ``normalize``: SB3's ``VecNormalize`` on observations and rewards (observation scales span
+  newtons, metres and radians per second);
+- ``sparse``: the sparse reward (1 per held step);
+- ``short``: episodes of 150 control steps (3 s) instead of 300.
+
+Usage: ``.venv/bin/python scripts/rl_probe.py --variant issue --steps 150000 --out runs/rl/issue.csv``
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import time
+from pathlib import Path
+
+import numpy as np
+import torch
+from stable_baselines3 import PPO
+from stable_baselines3.common.vec_env import VecMonitor, VecNormalize
+
+from gripper.envs.sb3 import make_sb3_vec_env
+
+VARIANTS: dict[str, dict] = {
+    "issue": {},
+    "normalize": {},
+    "sparse": {"reward_type": "sparse"},
+    "short": {"max_episode_steps": 150},
+}
+EVAL_SEED = 10_000  # evaluation episodes use seeds from here on: never a training seed
+
+
+def evaluate(model: PPO, env_kwargs: dict, episodes: int, norm: VecNormalize | None) -> float:
+    """Share of ``episodes`` (unseen seeds) in which the deterministic policy held the grasp."""
+    venv = make_sb3_vec_env(num_envs=1, nthread=1, **env_kwargs)
+    held = 0
+    for k in range(episodes):
+        venv.seed(EVAL_SEED + k)
+        obs = venv.reset()
+        done = np.array([False])
+        while not done[0]:
+            o = norm.normalize_obs(obs) if norm is not None else obs
+            action, _ = model.predict(o, deterministic=True)
+            obs, _, done, infos = venv.step(action)
+        held += bool(infos[0].get("is_success"))
+    venv.close()
+    return held / episodes
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--variant", choices=sorted(VARIANTS), default="issue")
+    ap.add_argument("--steps", type=int, default=150_000)
+    ap.add_argument("--every", type=int, default=25_000)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--n-envs", type=int, default=8)
+    ap.add_argument("--eval", type=int, default=20)
+    ap.add_argument("--out", required=True)
+    args = ap.parse_args()
+    torch.set_num_threads(1)
+    env_kwargs = {"objects": "block", "action_mode": "synergy", **VARIANTS[args.variant]}
+    venv = VecMonitor(make_sb3_vec_env(num_envs=args.n_envs, nthread=1, **env_kwargs))
+    norm = None
+    if args.variant == "normalize":
+        norm = VecNormalize(venv, norm_obs=True, norm_reward=True)
+    model = PPO("MlpPolicy", norm or venv, seed=args.seed, device="cpu", verbose=0)
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    with open(out, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["variant", "seed", "steps", "wall_s", "train_success", "train_return", "eval_success"])
+        done = 0
+        while done < args.steps:
+            model.learn(args.every, reset_num_timesteps=False)
+            done = model.num_timesteps
+            if norm is not None:
+                norm.training = False
+            succ = float(np.mean(model.ep_success_buffer)) if model.ep_success_buffer else float("nan")
+            ret = float(np.mean([e["r"] for e in model.ep_info_buffer])) if model.ep_info_buffer else float("nan")
+            ev = evaluate(model, env_kwargs, args.eval, norm)
+            if norm is not None:
+                norm.training = True
+            row = [args.variant, args.seed, done, round(time.perf_counter() - t0, 1), round(succ, 3),
+                   round(ret, 2), ev]
+            w.writerow(row)
+            f.flush()
+            print(*row, flush=True)
+
+
+if __name__ == "__main__":
+    main()
