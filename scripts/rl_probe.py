@@ -13,7 +13,10 @@ actions, dense reward):
 - ``normalize``: SB3's ``VecNormalize`` on observations and rewards (observation scales span
   newtons, metres and radians per second);
 - ``sparse``: the sparse reward (1 per held step);
-- ``short``: episodes of 150 control steps (3 s) instead of 300.
+- ``short``: episodes of 150 control steps (3 s) instead of 300;
+- ``lowstd``: PPO's exploration noise started at sigma 0.135 (``log_std_init`` -2, SB3's default
+  0) instead of the environment changed: ``scripts/rl_noise_probe.py`` shows the scripted grasp
+  surviving lift noise of sigma 0.1 but not 0.3.
 
 Usage: ``.venv/bin/python scripts/rl_probe.py --variant issue --steps 150000 --out runs/rl/issue.csv``
 """
@@ -37,7 +40,9 @@ VARIANTS: dict[str, dict] = {
     "normalize": {},
     "sparse": {"reward_type": "sparse"},
     "short": {"max_episode_steps": 150},
+    "lowstd": {},
 }
+PPO_KWARGS: dict[str, dict] = {"lowstd": {"policy_kwargs": {"log_std_init": -2.0}}}
 EVAL_SEED = 10_000  # evaluation episodes use seeds from here on: never a training seed
 
 
@@ -74,7 +79,8 @@ def main() -> None:
     norm = None
     if args.variant == "normalize":
         norm = VecNormalize(venv, norm_obs=True, norm_reward=True)
-    model = PPO("MlpPolicy", norm or venv, seed=args.seed, device="cpu", verbose=0)
+    model = PPO("MlpPolicy", norm or venv, seed=args.seed, device="cpu", verbose=0,
+                **PPO_KWARGS.get(args.variant, {}))
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
