@@ -16,7 +16,11 @@ actions, dense reward):
 - ``short``: episodes of 150 control steps (3 s) instead of 300;
 - ``lowstd``: PPO's exploration noise started at sigma 0.135 (``log_std_init`` -2, SB3's default
   0) instead of the environment changed: ``scripts/rl_noise_probe.py`` shows the scripted grasp
-  surviving lift noise of sigma 0.1 but not 0.3.
+  surviving lift noise of sigma 0.1 but not 0.3;
+- ``rate``: the lift action read as a rate (at most :data:`LIFT_RATE` m/s, integrated into the
+  height set-point by :class:`LiftRate`, a Gymnasium wrapper here, not in the package), so that
+  exploration noise becomes a slow random walk of the palm; single envs in SB3's
+  ``DummyVecEnv``, since the wrapper sits on each env.
 
 Usage: ``.venv/bin/python scripts/rl_probe.py --variant issue --steps 150000 --out runs/rl/issue.csv``
 """
@@ -28,12 +32,46 @@ import csv
 import time
 from pathlib import Path
 
+import gymnasium as gym
 import numpy as np
 import torch
 from stable_baselines3 import PPO
+from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.vec_env import VecMonitor, VecNormalize
 
+import gripper  # noqa: F401  (registers the environment)
+from gripper.envs.registration import ENV_ID
 from gripper.envs.sb3 import make_sb3_vec_env
+
+LIFT_RATE = 0.10  # m/s at action +-1: the scripted grasp's lift and approach speed
+
+
+class LiftRate(gym.Wrapper):
+    """Synergy actions (servo, lift rate): the lift entry in [-1, 1] is a rate of at most
+    :data:`LIFT_RATE`, integrated into the palm height set-point (kept in the lift's range)."""
+
+    def __init__(self, env):
+        super().__init__(env)
+        u = env.unwrapped
+        self._i_height = u.observation_structure["palm_height"][0]
+        self._dt = u.config.control_period
+        self._lift = 0.0
+        self._step = 0.0
+
+    def reset(self, **kwargs):
+        obs, info = self.env.reset(**kwargs)
+        u = self.env.unwrapped
+        per_m = (u.lift_action(0.20) - u.lift_action(0.15)) / 0.05  # action units per metre
+        self._step = LIFT_RATE * self._dt * per_m
+        self._lift = u.lift_action(float(obs[self._i_height]))
+        return obs, info
+
+    def step(self, action):
+        self._lift = float(np.clip(self._lift + np.clip(action[1], -1.0, 1.0) * self._step, -1.0, 1.0))
+        a = np.array(action, dtype=np.float32).copy()
+        a[1] = self._lift
+        return self.env.step(a)
+
 
 VARIANTS: dict[str, dict] = {
     "issue": {},
@@ -41,14 +79,16 @@ VARIANTS: dict[str, dict] = {
     "sparse": {"reward_type": "sparse"},
     "short": {"max_episode_steps": 150},
     "lowstd": {},
+    "rate": {},
 }
 PPO_KWARGS: dict[str, dict] = {"lowstd": {"policy_kwargs": {"log_std_init": -2.0}}}
 EVAL_SEED = 10_000  # evaluation episodes use seeds from here on: never a training seed
 
 
-def evaluate(model: PPO, env_kwargs: dict, episodes: int, norm: VecNormalize | None) -> float:
+def evaluate(model: PPO, env_kwargs: dict, episodes: int, norm: VecNormalize | None, rate: bool) -> float:
     """Share of ``episodes`` (unseen seeds) in which the deterministic policy held the grasp."""
-    venv = make_sb3_vec_env(num_envs=1, nthread=1, **env_kwargs)
+    venv = (make_vec_env(lambda: gym.make(ENV_ID, **env_kwargs), n_envs=1, wrapper_class=LiftRate)
+            if rate else make_sb3_vec_env(num_envs=1, nthread=1, **env_kwargs))
     held = 0
     for k in range(episodes):
         venv.seed(EVAL_SEED + k)
@@ -75,7 +115,11 @@ def main() -> None:
     args = ap.parse_args()
     torch.set_num_threads(1)
     env_kwargs = {"objects": "block", "action_mode": "synergy", **VARIANTS[args.variant]}
-    venv = VecMonitor(make_sb3_vec_env(num_envs=args.n_envs, nthread=1, **env_kwargs))
+    if args.variant == "rate":
+        venv = VecMonitor(make_vec_env(lambda: gym.make(ENV_ID, **env_kwargs), n_envs=args.n_envs,
+                                       wrapper_class=LiftRate))
+    else:
+        venv = VecMonitor(make_sb3_vec_env(num_envs=args.n_envs, nthread=1, **env_kwargs))
     norm = None
     if args.variant == "normalize":
         norm = VecNormalize(venv, norm_obs=True, norm_reward=True)
@@ -95,7 +139,7 @@ def main() -> None:
                 norm.training = False
             succ = float(np.mean(model.ep_success_buffer)) if model.ep_success_buffer else float("nan")
             ret = float(np.mean([e["r"] for e in model.ep_info_buffer])) if model.ep_info_buffer else float("nan")
-            ev = evaluate(model, env_kwargs, args.eval, norm)
+            ev = evaluate(model, env_kwargs, args.eval, norm, args.variant == "rate")
             if norm is not None:
                 norm.training = True
             row = [args.variant, args.seed, done, round(time.perf_counter() - t0, 1), round(succ, 3),
