@@ -25,7 +25,6 @@ from __future__ import annotations
 import math
 
 import mujoco
-import numpy as np
 
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
@@ -34,7 +33,7 @@ from gripper.model.builders import build_scene_spec
 from gripper.objects.library import GraspObject, Placement, add_object, get_object
 from gripper.sim.canonical import apply_canonical_constants
 from gripper.sim.damage import damage_measure
-from gripper.sim.probes import ObjectProbe
+from gripper.sim.probes import ObjectProbe, geom_normal_force
 from gripper.sim.stability import check_stable
 
 # Gap between the plate and the object's top at the start [m]: clears the 1 mm drop gap.
@@ -85,18 +84,12 @@ def crush_test(obj: str | GraspObject, depth: float, *, speed: float = CRUSH_SPE
     schedule = [(CRUSH_SETTLE_S, lambda t: 0.0), (t_move, lambda t: -speed * t),
                 (hold_s, lambda t: -travel), (t_move, lambda t: -travel + speed * t)]
     peak_strain = peak_force = 0.0
-    force = np.zeros(6)
     for duration, offset in schedule:
         t0 = d.time
         for _ in range(int(round(duration / TRIAL_TIMESTEP))):
             d.mocap_pos[0, 2] = z_top + offset(d.time - t0)
             mujoco.mj_step(m, d)
-            f = 0.0
-            for i in range(d.ncon):
-                if plate_geom in d.contact.geom[i]:
-                    mujoco.mj_contactForce(m, d, i, force)
-                    f += force[0]
-            peak_force = max(peak_force, f)
+            peak_force = max(peak_force, geom_normal_force(m, d, plate_geom))
             peak_strain = max(peak_strain, probe.edge_strain(d))
         check_stable(m, d, f"crush test of {obj.name}")
     measure = damage_measure(m, d, obj, probe, peak_strain=peak_strain, peak_force=peak_force)

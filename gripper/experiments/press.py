@@ -17,14 +17,13 @@ from __future__ import annotations
 import dataclasses
 
 import mujoco
-import numpy as np
 
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.model.builders import build_scene_spec
 from gripper.objects.library import Placement, add_object, get_object
 from gripper.sim.damage import permanent_dent
-from gripper.sim.probes import ObjectProbe
+from gripper.sim.probes import ObjectProbe, geom_normal_force
 
 PRESS_RADIUS = 0.007  # m: about a finger pad's curvature across its width
 PRESS_SPEED = 0.02  # m/s: a slow, quasi-static press (the 2 mm gap closes in 0.1 s)
@@ -61,19 +60,14 @@ def face_press(points: tuple[int, int, int], depth: float) -> dict:
     h = m.opt.timestep
     travel = 0.002 + depth
     n_in, n_hold = int(travel / PRESS_SPEED / h), int(PRESS_HOLD_S / h)
-    peak, f6 = 0.0, np.zeros(6)
+    peak = 0.0
     for _ in range(int(SETTLE_S / h)):
         mujoco.mj_step(m, d)
     for i in range(2 * n_in + n_hold):
         s = min(i, n_in) - max(0, i - n_in - n_hold)
         d.mocap_pos[0] = [x0 - travel * s / n_in, 0, zc]
         mujoco.mj_step(m, d)
-        force = 0.0
-        for c in range(d.ncon):
-            if gid in (d.contact[c].geom1, d.contact[c].geom2):
-                mujoco.mj_contactForce(m, d, c, f6)
-                force += abs(f6[0])
-        peak = max(peak, force)
+        peak = max(peak, geom_normal_force(m, d, gid))
     for _ in range(int(SETTLE_S / h)):
         mujoco.mj_step(m, d)
     return {"peak_force_N": peak, "dent_m": permanent_dent(m, d, probe),

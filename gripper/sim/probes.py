@@ -19,6 +19,17 @@ from gripper.objects.library import (
 STRAIN_DAMAGE_KINDS = ("balloon", "bag")
 
 
+def geom_normal_force(m: mujoco.MjModel, d: mujoco.MjData, geom: int) -> float:
+    """Sum of the normal forces of every contact that involves geom ``geom`` [N]."""
+    force = np.zeros(6)
+    total = 0.0
+    for i in range(d.ncon):
+        if geom in d.contact.geom[i]:
+            mujoco.mj_contactForce(m, d, i, force)
+            total += force[0]
+    return total
+
+
 @dataclass
 class ObjectProbe:
     """Indices into the model for the quantities the trial reads."""
