@@ -20,7 +20,12 @@ actions, dense reward):
 - ``rate``: the lift action read as a rate (at most :data:`LIFT_RATE` m/s, integrated into the
   height set-point by :class:`LiftRate`, a Gymnasium wrapper here, not in the package), so that
   exploration noise becomes a slow random walk of the palm; single envs in SB3's
-  ``DummyVecEnv``, since the wrapper sits on each env.
+  ``DummyVecEnv``, since the wrapper sits on each env;
+- ``noterm``: the episode does not end on success (``terminate_on_success=False``): with the
+  dense reward's positive per-step lift term, ending the episode on success forfeits the lift
+  reward of every remaining step, so a policy that hovers just under the success height earns
+  more than one that succeeds;
+- ``rate_noterm``: ``rate`` and ``noterm`` together.
 
 Usage: ``.venv/bin/python scripts/rl_probe.py --variant issue --steps 150000 --out runs/rl/issue.csv``
 """
@@ -80,8 +85,16 @@ VARIANTS: dict[str, dict] = {
     "short": {"max_episode_steps": 150},
     "lowstd": {},
     "rate": {},
+    "noterm": {"terminate_on_success": False},
+    "rate_noterm": {"terminate_on_success": False},
+    "v4": {},
+    "v4_tuned": {},
 }
-PPO_KWARGS: dict[str, dict] = {"lowstd": {"policy_kwargs": {"log_std_init": -2.0}}}
+# the variants before v4 ran the environment as it was: absolute palm set-points, the episode
+# ended on success, the reach term -1 x distance [m]
+V3 = {"palm_control": "position", "terminate_on_success": True}
+PPO_KWARGS: dict[str, dict] = {"lowstd": {"policy_kwargs": {"log_std_init": -2.0}},
+                               "v4_tuned": {"n_steps": 256, "batch_size": 256}}
 EVAL_SEED = 10_000  # evaluation episodes use seeds from here on: never a training seed
 
 
@@ -114,14 +127,15 @@ def main() -> None:
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     torch.set_num_threads(1)
-    env_kwargs = {"objects": "block", "action_mode": "synergy", **VARIANTS[args.variant]}
-    if args.variant == "rate":
+    base = {} if args.variant.startswith("v4") else V3
+    env_kwargs = {"objects": "block", "action_mode": "synergy", **base, **VARIANTS[args.variant]}
+    if args.variant.startswith("rate"):
         venv = VecMonitor(make_vec_env(lambda: gym.make(ENV_ID, **env_kwargs), n_envs=args.n_envs,
                                        wrapper_class=LiftRate))
     else:
         venv = VecMonitor(make_sb3_vec_env(num_envs=args.n_envs, nthread=1, **env_kwargs))
     norm = None
-    if args.variant == "normalize":
+    if args.variant in ("normalize", "v4_tuned"):
         norm = VecNormalize(venv, norm_obs=True, norm_reward=True)
     model = PPO("MlpPolicy", norm or venv, seed=args.seed, device="cpu", verbose=0,
                 **PPO_KWARGS.get(args.variant, {}))
@@ -130,6 +144,7 @@ def main() -> None:
     t0 = time.perf_counter()
     with open(out, "w", newline="") as f:
         w = csv.writer(f)
+        print("env", env_kwargs, "ppo", PPO_KWARGS.get(args.variant, {}), flush=True)
         w.writerow(["variant", "seed", "steps", "wall_s", "train_success", "train_return", "eval_success"])
         done = 0
         while done < args.steps:
@@ -139,7 +154,7 @@ def main() -> None:
                 norm.training = False
             succ = float(np.mean(model.ep_success_buffer)) if model.ep_success_buffer else float("nan")
             ret = float(np.mean([e["r"] for e in model.ep_info_buffer])) if model.ep_info_buffer else float("nan")
-            ev = evaluate(model, env_kwargs, args.eval, norm, args.variant == "rate")
+            ev = evaluate(model, env_kwargs, args.eval, norm, args.variant.startswith("rate"))
             if norm is not None:
                 norm.training = True
             row = [args.variant, args.seed, done, round(time.perf_counter() - t0, 1), round(succ, 3),

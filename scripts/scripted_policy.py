@@ -76,7 +76,8 @@ class ScriptedGrasp:
 def run(objects, episodes, seed, params=None):
     out = {}
     for name in objects:
-        env = gym.make("gripper:SoftGripperGrasp-v3", objects=name, xy_actions=True, params=params)
+        env = gym.make("gripper:SoftGripperGrasp-v3", objects=name, xy_actions=True, params=params,
+                       palm_control="position")
         policy = ScriptedGrasp(env)
         wins = 0
         for ep in range(episodes):

@@ -101,7 +101,7 @@ def test_sync_and_async_vector_envs_and_pickle():
         venv = gym.make_vec(ENV_ID, num_envs=2, vectorization_mode=mode, objects="block")
         obs, _ = venv.reset(seed=0)
         obs2, *_ = venv.step(venv.action_space.sample())
-        assert obs2.shape == (2, 96)
+        assert obs2.shape == (2, 99)
         venv.close()
     env = gym.make(ENV_ID, objects="block")
     env.reset(seed=1)
@@ -143,6 +143,8 @@ def test_docstring_tables_match_spaces():
     ({"action_mode": "claw"}, "action_mode"),
     ({"pose_noise": -0.1}, "pose_noise"),
     ({"camera": "drone"}, "camera"),
+    ({"palm_control": "torque"}, "palm_control"),
+    ({"palm_speed": 0.0}, "palm_speed"),
 ])
 def test_bad_constructor_arguments(kwargs, field):
     with pytest.raises(ValueError, match=re.escape(field)):
@@ -206,3 +208,61 @@ def test_vector_env_finds_the_unstable_slot():
     _, reward, terminated, _, info = venv.step(np.zeros((3, 5)))
     assert list(terminated) == [False, True, False]
     assert list(info["unstable"]) == [False, True, False] and reward[1] == 0.0
+
+
+def test_velocity_palm_moves_its_set_point_at_palm_speed_and_stays_in_range():
+    """Velocity action: each +-1 step moves the lift set-point palm_speed x 20 ms, 0 holds it,
+    and it stops at the range's ends (home 0.25 m; fingertips 4 mm above the floor)."""
+    env = SoftGripperGraspEnv(objects="block", action_mode="synergy")
+    obs, _ = env.reset(seed=0)
+    i = env.observation_structure["palm_setpoint"][0] + 2
+    z0 = obs[i]
+    step = env.config.palm_speed * env.config.control_period
+    for k in range(1, 6):
+        obs, *_ = env.step(np.array([-1.0, 1.0]))
+        assert obs[i] == pytest.approx(z0 + k * step, abs=1e-12)
+    obs, *_ = env.step(np.array([-1.0, 0.0]))
+    assert obs[i] == pytest.approx(z0 + 5 * step, abs=1e-12)
+    for _ in range(60):
+        obs, *_ = env.step(np.array([-1.0, 1.0]))
+    assert obs[i] == pytest.approx(0.25, abs=1e-12)
+    assert abs(obs[env.observation_structure["palm_height"][0]] - 0.25) < 2e-3  # the stage follows
+    for _ in range(150):
+        obs, *_ = env.step(np.array([-1.0, -1.0]))
+    assert obs[i] == pytest.approx(env.config.params.finger.length + 0.004, abs=1e-12)
+
+
+def test_position_palm_control_keeps_the_v2_action():
+    """palm_control="position": the lift entry is the height set-point itself."""
+    env = SoftGripperGraspEnv(objects="block", action_mode="synergy", palm_control="position")
+    env.reset(seed=0)
+    a = env.unwrapped.lift_action(0.2)
+    for _ in range(3):
+        obs, *_ = env.step(np.array([-1.0, a]))
+    assert obs[env.observation_structure["palm_setpoint"][0] + 2] == pytest.approx(0.2, abs=1e-12)
+
+
+def test_a_velocity_grasp_succeeds_and_the_episode_runs_on():
+    """The benchmark's grasp, driven through velocity actions (descend to fingertips 8 mm above
+    the floor, close to 3 rad, lift at 0.1 m/s), is held; by default success does not end the
+    episode (with the dense reward's positive terms, ending it would forfeit the rest of the
+    episode's lift reward), and every held step keeps paying the success term."""
+    env = SoftGripperGraspEnv(objects="block", action_mode="synergy")
+    obs, _ = env.reset(seed=0)
+    u, h = env.unwrapped, env.observation_structure["palm_height"][0]
+    grasp = env.config.params.finger.length + 0.008
+    close = u.servo_action(3.0)
+    held_at, terminated = None, False
+    for k in range(300):
+        if obs[h] > grasp + 0.001 and held_at is None and k < 60:
+            a = [-1.0, max(-1.0, -(obs[h] - grasp) / 0.002)]
+        elif k < 100:
+            a = [close, 0.0]
+        else:
+            a = [close, 1.0]
+        obs, r, terminated, truncated, info = env.step(np.array(a))
+        assert not terminated
+        if info["is_success"] and held_at is None:
+            held_at = k
+    assert held_at is not None and held_at < 250
+    assert info["is_success"] and info["reward_success"] == env.config.weights["success"]

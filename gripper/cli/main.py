@@ -3,7 +3,8 @@
 Subcommands: ``bend`` (paper 000's bending test), ``servo`` (servo model against its
 datasheet), ``params`` (write the default parameter file), ``write-models`` (regenerate
 ``gripper/data/soft_gripper``), ``check`` (step the scene under random servo commands), ``bench``
-(the grasp benchmark), ``pullout`` (holding force), ``video`` (render one trial).
+(the grasp benchmark), ``pullout`` (holding force), ``video`` (render one trial), ``train``
+(PPO or SAC on the environment) and ``play`` (video of a trained policy).
 
 Errors in input (bad parameter, malformed file) print one line on stderr and exit with code 2.
 """
@@ -189,6 +190,75 @@ def _cmd_video(args) -> int:
           f"{res['width']}x{res['height']} at {res['fps']:g} fps); simulate {res['simulate_s']:.1f} s, "
           f"render {res['render_s']:.1f} s ({res['render_fps']:.1f} frames/s), encode {res['encode_s']:.1f} s")
     return EXIT_UNSTABLE if res["status"] == "error" else 0
+
+
+def _needs_rl(command: str) -> None:
+    import importlib.util
+
+    if importlib.util.find_spec("stable_baselines3") is None or importlib.util.find_spec("torch") is None:
+        raise ValueError(f"{command}: needs the rl extra (stable-baselines3 and torch): "
+                         "pip install -e '.[rl]'")
+
+
+def _hyperparam_overrides(items: list[str]) -> dict:
+    out = {}
+    for item in items or []:
+        key, sep, value = item.partition("=")
+        if not sep or not key:
+            raise ValueError(f"--set: expected KEY=VALUE, got {item!r}")
+        try:
+            out[key.strip()] = json.loads(value)
+        except json.JSONDecodeError:
+            out[key.strip()] = value.strip()
+    return out
+
+
+def _cmd_train(args) -> int:
+    from gripper.rl.config import TrainConfig
+
+    cfg = TrainConfig(algo=args.algo, objects=tuple(o.strip() for o in args.objects.split(",") if o.strip()),
+                      action_mode=args.action_mode, xy_actions=args.xy, steps=args.steps, seed=args.seed,
+                      n_envs=args.n_envs, chunk_steps=args.chunk_steps, eval_episodes=args.eval_episodes,
+                      hyperparams=_hyperparam_overrides(args.set)).validate()
+    check_output_dir(args.out)
+    if args.video:
+        from gripper.render.video import check_output_path
+
+        check_output_path(args.video)
+    _needs_rl("train")
+    from gripper.rl.training import train
+
+    def show(row):
+        per = " ".join(f"{k[5:]} {v:.2f}" for k, v in row.items() if k.startswith("eval_") and k not in (
+            "eval_success", "eval_return"))
+        print(f"{row['steps']:>9} steps {row['wall_s']:>8.0f} s  train: {row['train_episodes']:>4} episodes, "
+              f"success {row['train_success']:.2f}, return {row['train_return']:7.1f}  "
+              f"eval: success {row['eval_success']:.2f} ({per})", flush=True)
+
+    rows = train(cfg, args.out, resume=args.resume, on_progress=show)
+    print(f"wrote {args.out}/policy.zip and progress.csv ({len(rows)} evaluations)")
+    if args.video:
+        return _play(args.out, args.video, args.video_seed, 640, 480, "front")
+    return 0
+
+
+def _play(run, out, seed, width, height, camera) -> int:
+    from gripper.rl.policy_video import record_policy_video
+    from gripper.rl.training import load_policy
+
+    cfg, act = load_policy(run)
+    res = record_policy_video(act, cfg.env_kwargs(), out, seed=seed, width=width, height=height, camera=camera)
+    print(f"{res['object']}, seed {seed}: {'held' if res['success'] else 'not held'}; wrote {res['video']} "
+          f"({res['frames']} frames at {res['fps']:g} fps)")
+    return 0
+
+
+def _cmd_play(args) -> int:
+    from gripper.render.video import check_output_path
+
+    check_output_path(args.out)
+    _needs_rl("play")
+    return _play(args.run, args.out, args.seed, args.width, args.height, args.camera)
 
 
 def _cmd_calibrate(args) -> int:
@@ -568,6 +638,46 @@ def build_parser() -> argparse.ArgumentParser:
     cr.add_argument("--hold", type=float, default=CRUSH_HOLD_S, help="hold time at depth [s] (default %(default)s)")
     cr.add_argument("--json", action="store_true", help="one JSON object per line")
     cr.set_defaults(func=_cmd_crush)
+
+    from gripper.rl.config import EVAL_SEED, TrainConfig
+
+    tc = TrainConfig()
+    tr = sub.add_parser(
+        "train", help="train PPO or SAC on the grasp environment (needs the rl extra)",
+        description="Train Stable-Baselines3 PPO or SAC on SoftGripperGrasp through the native vector "
+                    "env, with the documented hyper-parameters (gripper/rl/hyperparams.py). Every "
+                    "--chunk-steps it evaluates the deterministic policy on --eval-episodes unseen seeds, "
+                    "appends a row to progress.csv and writes a checkpoint; --resume continues from the "
+                    "latest one, bitwise as if never stopped. Writes policy.zip at the end.")
+    tr.add_argument("--algo", choices=("ppo", "sac"), default=tc.algo)
+    tr.add_argument("--objects", default=",".join(tc.objects), help="comma-separated names (default %(default)s)")
+    tr.add_argument("--action-mode", choices=("synergy", "fingers"), default=tc.action_mode)
+    tr.add_argument("--xy", action="store_true", help="add the palm's x/y velocity actions")
+    tr.add_argument("--steps", type=int, default=tc.steps, help="environment steps (default %(default)s)")
+    tr.add_argument("--seed", type=int, default=tc.seed, help="seed (default %(default)s)")
+    tr.add_argument("--n-envs", type=int, default=tc.n_envs, help="environments (default %(default)s)")
+    tr.add_argument("--chunk-steps", type=int, default=tc.chunk_steps,
+                    help="steps between evaluations and checkpoints (default %(default)s)")
+    tr.add_argument("--eval-episodes", type=int, default=tc.eval_episodes,
+                    help=f"evaluation episodes, seeds from {EVAL_SEED} on (default %(default)s)")
+    tr.add_argument("--set", action="append", metavar="KEY=VALUE",
+                    help="override a hyper-parameter, e.g. --set n_epochs=5 (repeatable)")
+    tr.add_argument("--out", required=True, metavar="DIR", help="run folder")
+    tr.add_argument("--resume", action="store_true", help="continue the run in --out from its latest checkpoint")
+    tr.add_argument("--video", metavar="FILE.mp4", help="also write a video of the final policy")
+    tr.add_argument("--video-seed", type=int, default=EVAL_SEED, help="the video's episode seed (default %(default)s)")
+    tr.set_defaults(func=_cmd_train)
+
+    pl = sub.add_parser("play", help="video of a trained policy's episode (needs the rl extra)",
+                        description="Run one episode of a run folder's final policy (deterministic) and "
+                                    "write its video (H.264 MP4 or GIF).")
+    pl.add_argument("--run", required=True, metavar="DIR", help="run folder of 'gripper train'")
+    pl.add_argument("--out", required=True, metavar="FILE", help="output .mp4 or .gif")
+    pl.add_argument("--seed", type=int, default=EVAL_SEED, help="episode seed (default %(default)s)")
+    pl.add_argument("--camera", default="front", help="camera preset (default front)")
+    pl.add_argument("--width", type=int, default=640, help="pixels (default 640)")
+    pl.add_argument("--height", type=int, default=480, help="pixels (default 480)")
+    pl.set_defaults(func=_cmd_play)
     return parser
 
 

@@ -43,14 +43,20 @@ START_CLEARANCE = 0.010
 TIP_FLOOR_CLEARANCE = 0.004
 # Horizontal set-point range of the x/y actions [m]: ±20 mm covers the ±10 mm pose noise twice.
 XY_ACTION_RANGE = 0.020
+# Palm speed at a velocity action of +-1 [m/s] (``palm_control="velocity"``): the scripted grasp's
+# approach and lift speed (scripts/scripted_policy.py), a tenth of the lift stage's rating.
+PALM_SPEED = 0.10
 # Workspace: the object has left it beyond this horizontal distance from the palm axis's home
 # [m] (a gripper of 57 mm radius cannot reach it) or below the floor by 20 mm (fell through).
 WORKSPACE_RADIUS = 0.15
 WORKSPACE_FLOOR = -0.020
 IDENTITY_QUAT = np.array([1.0, 0.0, 0.0, 0.0])  # orientation reported for a flex object
 
+# Length scale of the reach reward [m]: 1 - tanh(d / REACH_SCALE) falls from 0.52 at the
+# benchmark's grasp pose over the block (d = 26 mm) to 0.06 at the start (d = 88 mm).
+REACH_SCALE = 0.05
 DEFAULT_REWARD_WEIGHTS = {
-    "reach": 1.0,     # per metre of distance between the grasp point and the object
+    "reach": 1.0,     # times 1 - tanh(distance between the grasp point and the object / REACH_SCALE)
     "contact": 0.25,  # fraction of fingers whose pads press on something
     "lift": 2.0,      # object rise above its start / success height, clipped to [0, 1]
     "success": 5.0,   # per control step at which the grasp counts as held
@@ -73,10 +79,12 @@ class EnvConfig(Validated):
     friction_noise: float = 0.0
     action_mode: str = "fingers"
     xy_actions: bool = False
+    palm_control: str = "velocity"
+    palm_speed: float = PALM_SPEED
     frame_skip: int = 10
     reward_type: str = "dense"
     reward_weights: dict = field(default_factory=lambda: dict(DEFAULT_REWARD_WEIGHTS))
-    terminate_on_success: bool = True
+    terminate_on_success: bool = False
     success_hold_s: float = 1.0
     success_height: float = 0.08
     max_slip: float = 0.020
@@ -93,6 +101,11 @@ class EnvConfig(Validated):
                 raise ValueError(f"{name}: must be in [0, {hi}], got {v!r}")
         if self.action_mode not in ("fingers", "synergy"):
             raise ValueError(f"action_mode: must be 'fingers' or 'synergy', got {self.action_mode!r}")
+        if self.palm_control not in ("velocity", "position"):
+            raise ValueError(f"palm_control: must be 'velocity' or 'position', got {self.palm_control!r}")
+        if not (isinstance(self.palm_speed, int | float) and math.isfinite(self.palm_speed)
+                and 0 < self.palm_speed <= 1.0):
+            raise ValueError(f"palm_speed: must be in (0, 1] m/s, got {self.palm_speed!r}")
         if self.reward_type not in ("dense", "sparse"):
             raise ValueError(f"reward_type: must be 'dense' or 'sparse', got {self.reward_type!r}")
         if not isinstance(self.frame_skip, int) or not 1 <= self.frame_skip <= 500:
@@ -137,7 +150,8 @@ def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
     nf, nh = cfg.n_fingers, cfg.params.finger.n_segments - 1
     parts = [("hinge_angle", nf * nh, "rad"), ("hinge_velocity", nf * nh, "rad/s"),
              ("cable_shortening", nf, "m"), ("cable_tension", nf, "N"), ("servo_angle", nf, "rad"),
-             ("palm_height", 1, "m"), ("object_pos_rel_palm", 3, "m"), ("object_quat", 4, "-"),
+             ("palm_height", 1, "m"), ("palm_setpoint", 3, "m"),
+             ("object_pos_rel_palm", 3, "m"), ("object_quat", 4, "-"),
              ("pad_force", nf * cfg.params.finger.n_segments, "N"),
              # what the servos report (gripper.sim.sensing: quantised, noisy)
              ("sensed_servo_position", nf, "rad"), ("sensed_servo_current", nf, "A"),
@@ -191,6 +205,7 @@ class Scene:
         # observation gather: palm x/y joints (or none), object body (or the flex centroid)
         self.palm_xy_q = np.array([self.lift_q[a] for a in ("lift_x", "lift_y") if a in self.lift_q], dtype=int)
         self.palm_xy_slot = np.array([i for i, a in enumerate(("lift_x", "lift_y")) if a in self.lift_q], dtype=int)
+        self.palm_xy_act = np.array([self.act_lift[a] for a in ("lift_x", "lift_y") if a in self.lift_q], dtype=int)
 
     def signature(self) -> tuple:
         """Sizes that decide whether scenes can share one rollout call (cached: read every step)."""
@@ -212,11 +227,21 @@ class Scene:
         """The servo action that sets the spool angle ``angle`` [rad]."""
         return float(np.clip(2.0 * angle / self.servo_max - 1.0, -1.0, 1.0))
 
-    def controls(self, action: np.ndarray) -> np.ndarray:
-        """Map an action in [-1, 1] to the actuator controls (nu,): each actuator's control is
-        ``offset + scale * action[source]`` (servos: [0, full travel]; lift z: [z_min, z_max];
-        x/y: ±XY_ACTION_RANGE; actuators without an action stay at 0)."""
-        return self._ctrl_offset + self._ctrl_scale * np.clip(action, -1.0, 1.0)[self._ctrl_source]
+    def controls(self, action: np.ndarray, previous: np.ndarray) -> np.ndarray:
+        """Map an action in [-1, 1] to the actuator controls (nu,), given the ``previous``
+        control period's controls.
+
+        Servos: ``offset + scale * action`` over [0, full travel]. Palm stages (lift z in
+        [z_min, z_max], x/y in ±XY_ACTION_RANGE), by ``palm_control``: ``"position"``, the
+        set-point mapped linearly as the servos; ``"velocity"``, the previous set-point moved by
+        ``action * palm_speed * control period`` and kept in its range. Actuators without an
+        action stay at 0."""
+        a = np.clip(action, -1.0, 1.0)[self._ctrl_source]
+        u = self._ctrl_offset + self._ctrl_scale * a
+        if self.cfg.palm_control == "velocity":
+            p = self._palm_act
+            u[p] = np.clip(previous[p] + self._palm_step * a[p], self._palm_lo, self._palm_hi)
+        return u
 
     def _build_control_map(self) -> None:
         nu = self.model.nu
@@ -231,10 +256,17 @@ class Scene:
         self._ctrl_source[z] = k
         self._ctrl_offset[z] = 0.5 * (self.z_min + self.z_max)
         self._ctrl_scale[z] = 0.5 * (self.z_max - self.z_min)
+        palm, lo, hi = [z], [self.z_min], [self.z_max]
         if self.cfg.xy_actions:
             for j, name in enumerate(("lift_x", "lift_y")):
                 self._ctrl_source[self.act_lift[name]] = k + 1 + j
                 self._ctrl_scale[self.act_lift[name]] = XY_ACTION_RANGE
+                palm.append(self.act_lift[name])
+                lo.append(-XY_ACTION_RANGE)
+                hi.append(XY_ACTION_RANGE)
+        self._palm_act = np.array(palm)
+        self._palm_lo, self._palm_hi = np.array(lo), np.array(hi)
+        self._palm_step = self.cfg.palm_speed * self.cfg.control_period
 
 
 class SceneSet:
@@ -329,10 +361,13 @@ def observe(ep: EpisodeState, sens: np.ndarray) -> np.ndarray:
     palm[2] = s.home + q[s.lift_q["lift_z"]]
     pos = s.probe.object_pos(d) - palm
     quat = d.xquat[s.probe.body] if s.probe.body >= 0 else IDENTITY_QUAT
+    setpoint = np.zeros(3)
+    setpoint[s.palm_xy_slot] = d.ctrl[s.palm_xy_act]
+    setpoint[2] = s.home + d.ctrl[s.act_lift["lift_z"]]
     reel = q[s.reel_q]
     r = s.sensor.read(sens, ep.sensor_rng)
     return np.concatenate([
-        q[s.hinge_q], d.qvel[s.hinge_v], reel, sens[s.tension], reel / s.spool, palm[2:3], pos, quat,
+        q[s.hinge_q], d.qvel[s.hinge_v], reel, sens[s.tension], reel / s.spool, palm[2:3], setpoint, pos, quat,
         sens[s.pads], r.position, r.current, r.tension])
 
 
@@ -372,7 +407,7 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     is_success = held_s >= cfg.success_hold_s - 1e-9
     w = cfg.weights
     terms = {
-        "reward_reach": -w["reach"] * reach,
+        "reward_reach": w["reach"] * (1.0 - math.tanh(reach / REACH_SCALE)),
         "reward_contact": w["contact"] * touching,
         "reward_lift": w["lift"] * min(1.0, max(0.0, height / cfg.success_height)),
         "reward_success": w["success"] * float(is_success),

@@ -14,6 +14,7 @@ from gymnasium import spaces
 
 from gripper.core.params import GripperParams
 from gripper.envs.core import (
+    PALM_SPEED,
     BatchStepper,
     EnvConfig,
     EpisodeState,
@@ -33,7 +34,7 @@ RENDER_MODES = ["rgb_array", "depth_array"] + (
 
 def make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode, xy_actions,
                 frame_skip, reward_type, reward_weights, terminate_on_success, success_hold_s,
-                params, calibration=None) -> EnvConfig:
+                params, calibration=None, palm_control="velocity", palm_speed=PALM_SPEED) -> EnvConfig:
     if isinstance(objects, str):
         objects = tuple(o.strip() for o in objects.split(",") if o.strip())
     if params is None:
@@ -46,6 +47,7 @@ def make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, acti
     return EnvConfig(
         objects=tuple(objects), pose_noise=pose_noise, yaw_noise=yaw_noise, mass_noise=mass_noise,
         friction_noise=friction_noise, action_mode=action_mode, xy_actions=xy_actions,
+        palm_control=palm_control, palm_speed=palm_speed,
         frame_skip=frame_skip, reward_type=reward_type, reward_weights=dict(reward_weights or {}),
         terminate_on_success=terminate_on_success, success_hold_s=success_hold_s, params=params,
     ).validate()
@@ -98,28 +100,40 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Action space
 
-    ``Box(-1, 1, (n,), float32)``; every entry maps linearly onto its actuator's set-point range:
+    ``Box(-1, 1, (n,), float32)``. The servo entries map linearly onto their set-point range; the
+    palm entries are, by ``palm_control``, a velocity (default) or a position set-point:
 
     | action_mode | index | actuator | -1 | +1 | unit |
     |---|---|---|---|---|---|
     | fingers | 0-3 | servo of finger k (cable reeled in) | 0 | servo travel (π) | rad |
-    | fingers | 4 | lift: palm-face height set-point | fingertips 4 mm above floor | home, 0.25 m | m |
+    | fingers | 4 | lift: palm-face height | down at palm_speed | up at palm_speed | m/s |
     | synergy | 0 | all four servos together | 0 | servo travel (π) | rad |
-    | synergy | 1 | lift: palm-face height set-point | fingertips 4 mm above floor | home, 0.25 m | m |
-    | either, xy_actions | last 2 | palm x and y set-points | -0.02 | +0.02 | m |
+    | synergy | 1 | lift: palm-face height | down at palm_speed | up at palm_speed | m/s |
+    | either, xy_actions | last 2 | palm x and y | -palm_speed | +palm_speed | m/s |
+
+    ``palm_control="velocity"``: each palm entry moves its set-point by
+    ``action × palm_speed × control period`` (0.10 m/s and 20 ms by default: 2 mm a step), kept
+    in its range: palm-face height from fingertips 4 mm above the floor up to home (0.25 m), x
+    and y within ±0.02 m. 0 holds the palm still. ``palm_control="position"``: the entry is the
+    set-point itself, -1 and +1 being the ends of those ranges (``SoftGripperGrasp-v2``'s
+    action). The set-points are observed (``palm_setpoint``).
 
     ``env.unwrapped.lift_action(height)``, ``servo_action(angle)`` and ``xy_action(offset)`` give
-    the action value for a palm height [m], a spool angle [rad] or a palm x/y offset [m].
-    Within a control period the palm set-points ramp linearly from the previous action's value
-    to the new one (first-order hold, as a stage's trajectory generator; a step would jerk the
-    stiff stage), while the servo set-points are held (zero-order hold, as a hobby servo's 50 Hz
-    PWM command).
+    the position-mode action value for a palm height [m], a spool angle [rad] or a palm x/y
+    offset [m].
+    Within a control period the palm set-points ramp linearly from the previous value to the new
+    one (first-order hold, as a stage's trajectory generator; a step would jerk the stiff stage),
+    while the servo set-points are held (zero-order hold, as a hobby servo's 50 Hz PWM command).
     The servos slew their set-point at the contraction speed (the servo's no-load speed), so a
     jump in the action is followed at the speed the hardware allows.
 
+    Why velocity: PPO and SAC explore with Gaussian action noise of σ ≈ 1 at the start. On a
+    position set-point that noise moves the palm by centimetres every 20 ms and shakes any grasp
+    apart (``docs/environment.md``); on a velocity it is a slow random walk of the palm.
+
     ## Observation space
 
-    ``Box(-inf, inf, (96,), float64)`` with the default four fingers of six elements; the layout
+    ``Box(-inf, inf, (99,), float64)`` with the default four fingers of six elements; the layout
     is ``env.observation_structure`` (name -> (start, size, unit)):
 
     | part | indices | size | unit |
@@ -130,12 +144,13 @@ class SoftGripperGraspEnv(gym.Env):
     | cable_tension | 44-47 | 4 | N |
     | servo_angle | 48-51 | 4 | rad |
     | palm_height | 52-52 | 1 | m |
-    | object_pos_rel_palm | 53-55 | 3 | m |
-    | object_quat | 56-59 | 4 | - |
-    | pad_force | 60-83 | 24 | N |
-    | sensed_servo_position | 84-87 | 4 | rad |
-    | sensed_servo_current | 88-91 | 4 | A |
-    | sensed_spool_tension | 92-95 | 4 | N |
+    | palm_setpoint | 53-55 | 3 | m |
+    | object_pos_rel_palm | 56-58 | 3 | m |
+    | object_quat | 59-62 | 4 | - |
+    | pad_force | 63-86 | 24 | N |
+    | sensed_servo_position | 87-90 | 4 | rad |
+    | sensed_servo_current | 91-94 | 4 | A |
+    | sensed_spool_tension | 95-98 | 4 | N |
 
     The ``sensed_*`` entries are what the servos report (:mod:`gripper.sim.sensing`: present
     position in encoder counts, present current in 2.69 mA units, a spool load cell, each with
@@ -143,12 +158,13 @@ class SoftGripperGraspEnv(gym.Env):
 
     Hinge angles and velocities are finger-major (finger 0 hinges 2-6, then finger 1, ...).
     Cable shortening is the cable reeled onto the spool; tension is the cable's limit force;
-    the palm height is the palm face above the floor; the object position is its reference point
-    (body origin, the bag's contents, or a flex's vertex centroid) relative to the palm centre;
-    its orientation is a unit quaternion (identity for balloon and paper box, whose flex has no
-    single frame); pad forces are the touch sensors of each element's pad, finger-major.
-    Forces (tension, pads) are the sensor values of the last physics step of the control period;
-    everything else is the state at its end.
+    the palm height is the palm face above the floor; the palm set-point is the stages' current
+    set-point (x and y from home, 0 without x/y stages; z as the palm-face height); the object
+    position is its reference point (body origin, the bag's contents, or a flex's vertex
+    centroid) relative to the palm centre; its orientation is a unit quaternion (identity for
+    balloon and paper box, whose flex has no single frame); pad forces are the touch sensors of
+    each element's pad, finger-major. Forces (tension, pads) are the sensor values of the last
+    physics step of the control period; everything else is the state at its end.
 
     ## Rewards
 
@@ -249,18 +265,20 @@ class SoftGripperGraspEnv(gym.Env):
     def __init__(self, objects=("block", "cylinder"), pose_noise: float = 0.010, yaw_noise: bool = True,
                  mass_noise: float = 0.0, friction_noise: float = 0.0, action_mode: str = "fingers",
                  xy_actions: bool = False, frame_skip: int = 10, reward_type: str = "dense",
-                 reward_weights: dict | None = None, terminate_on_success: bool = True,
+                 reward_weights: dict | None = None, terminate_on_success: bool = False,
                  success_hold_s: float = 1.0, params: Any = None, render_mode: str | None = None,
-                 width: int = 640, height: int = 480, camera: str = "front", calibration: Any = None):
+                 width: int = 640, height: int = 480, camera: str = "front", calibration: Any = None,
+                 palm_control: str = "velocity", palm_speed: float = PALM_SPEED):
         self.config = make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode,
                                   xy_actions, frame_skip, reward_type, reward_weights, terminate_on_success,
-                                  success_hold_s, params, calibration)
+                                  success_hold_s, params, calibration, palm_control, palm_speed)
         check_render_args(render_mode, width, height, camera)
         self._init_kwargs = dict(
             objects=self.config.objects, pose_noise=pose_noise, yaw_noise=yaw_noise, mass_noise=mass_noise,
             friction_noise=friction_noise, action_mode=action_mode, xy_actions=xy_actions,
             frame_skip=frame_skip, reward_type=reward_type, reward_weights=reward_weights,
             terminate_on_success=terminate_on_success, success_hold_s=success_hold_s,
+            palm_control=palm_control, palm_speed=palm_speed,
             params=self.config.params, render_mode=render_mode, width=width, height=height, camera=camera)
         self.render_mode, self.width, self.height, self.camera = render_mode, width, height, camera
         self.metadata = {**self.metadata, "render_fps": int(round(1.0 / self.config.control_period))}
@@ -286,7 +304,7 @@ class SoftGripperGraspEnv(gym.Env):
             raise RuntimeError("step: call reset() first")
         action = check_action(action, self.action_space.shape)
         ep = self._ep
-        ctrl = ep.scene.controls(action)
+        ctrl = ep.scene.controls(action, ep.data.ctrl)
         sens, err = self._stepper.step([ep], [ctrl])[0]
         ep.steps += 1
         if err is not None:

@@ -114,7 +114,7 @@ class SoftGripperGraspVectorEnv(VectorEnv):
             if self._autoreset[i]:
                 obs[i], per_env[i] = self._reset_slot(i)
         results = self._stepper.step([self._eps[i] for i in live],
-                                     [self._eps[i].scene.controls(actions[i]) for i in live])
+                                     [self._eps[i].scene.controls(actions[i], self._eps[i].data.ctrl) for i in live])
         for i, (sens, err) in zip(live, results, strict=True):
             ep = self._eps[i]
             ep.steps += 1

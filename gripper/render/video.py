@@ -66,7 +66,7 @@ def check_output_path(out: str | Path) -> Path:
     return out
 
 
-def _overlay(frame: np.ndarray, lines: list[str]) -> np.ndarray:
+def overlay_lines(frame: np.ndarray, lines: list[str]) -> np.ndarray:
     from PIL import Image, ImageDraw
 
     img = Image.fromarray(frame)
@@ -93,7 +93,7 @@ def render_frames(rec: FrameRecorder, *, width: int = 640, height: int = 480, ca
             img = renderer.render(d)
             if overlay:
                 tens = " ".join(f"{t:4.1f}" for t in rec.tensions[i])
-                img = _overlay(img, [f"{rec.phases[i]:<8} t = {d.time:5.2f} s", f"cable tension [N]: {tens}"])
+                img = overlay_lines(img, [f"{rec.phases[i]:<8} t = {d.time:5.2f} s", f"cable tension [N]: {tens}"])
             frames[i] = img
     finally:
         renderer.close()

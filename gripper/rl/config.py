@@ -1,0 +1,114 @@
+"""One training run, validated: algorithm, task variant, budget, seed and evaluation.
+
+Example:
+    >>> from gripper.rl.config import TrainConfig
+    >>> TrainConfig(algo="ppo", objects=("block",), steps=100_000).validate().env_kwargs()["objects"]
+    ('block',)
+    >>> TrainConfig(algo="dqn").validate()
+    Traceback (most recent call last):
+    ...
+    ValueError: algo: must be one of ppo, sac, got 'dqn'
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass, field, fields
+from typing import Any
+
+from gripper.core.fields import Validated
+
+ALGOS = ("ppo", "sac")
+# First seed of the evaluation episodes: training episodes draw their seeds from the run's seed
+# (SB3's venv.seed(seed + chunk offset), at most a few thousand), so these are never trained on.
+EVAL_SEED = 1_000_000
+
+
+@dataclass(frozen=True)
+class TrainConfig(Validated):
+    """A training run of ``SoftGripperGrasp`` with Stable-Baselines3.
+
+    Attributes:
+        algo: ``"ppo"`` or ``"sac"``.
+        objects: objects sampled per episode (library names).
+        action_mode: ``"synergy"`` (one servo command and the lift) or ``"fingers"``.
+        xy_actions: add the palm's x/y velocity actions.
+        steps: environment steps of the run (all envs together).
+        seed: seeds the network, the algorithm's noise and the training episodes.
+        n_envs: environments stepped together (the native vector env).
+        chunk_steps: steps between evaluations and checkpoints. Training runs chunk by chunk;
+            each chunk starts from a seeded reset of the envs and re-seeded generators, so a run
+            resumed from a checkpoint is bitwise the run that never stopped. PPO rounds it up to
+            a whole number of rollouts (``n_steps × n_envs``).
+        eval_episodes: deterministic-policy episodes per evaluation, seeds from ``EVAL_SEED``.
+        max_episode_steps: truncation (control steps of 20 ms).
+        hyperparams: overrides of :mod:`gripper.rl.hyperparams`'s values for ``algo``.
+    """
+
+    algo: str = "ppo"
+    objects: tuple[str, ...] = ("block", "cylinder")
+    action_mode: str = "synergy"
+    xy_actions: bool = False
+    steps: int = 1_000_000
+    seed: int = 0
+    n_envs: int = 8
+    chunk_steps: int = 65_536
+    eval_episodes: int = 50
+    max_episode_steps: int = 300
+    hyperparams: dict = field(default_factory=dict)
+
+    def validate(self) -> TrainConfig:
+        if self.algo not in ALGOS:
+            raise ValueError(f"algo: must be one of {', '.join(ALGOS)}, got {self.algo!r}")
+        if isinstance(self.objects, str) or not self.objects or not all(isinstance(o, str) for o in self.objects):
+            raise ValueError(f"objects: expected a non-empty list of object names, got {self.objects!r}")
+        from gripper.objects.library import get_object
+
+        for name in self.objects:
+            get_object(name)
+        if self.action_mode not in ("synergy", "fingers"):
+            raise ValueError(f"action_mode: must be 'synergy' or 'fingers', got {self.action_mode!r}")
+        if not isinstance(self.xy_actions, bool):
+            raise ValueError(f"xy_actions: must be true or false, got {self.xy_actions!r}")
+        for name, lo in (("steps", 1), ("seed", 0), ("n_envs", 1), ("chunk_steps", 1), ("eval_episodes", 1),
+                         ("max_episode_steps", 1)):
+            v = getattr(self, name)
+            if not isinstance(v, int) or isinstance(v, bool) or v < lo:
+                raise ValueError(f"{name}: must be an integer >= {lo}, got {v!r}")
+        if self.n_envs > 64 or self.eval_episodes > 1000:
+            raise ValueError("n_envs: at most 64; eval_episodes: at most 1000")
+        from gripper.rl.hyperparams import hyperparams_for
+
+        hyperparams_for(self.algo, self.hyperparams)  # raises on an unknown or bad override
+        return self
+
+    def env_kwargs(self) -> dict[str, Any]:
+        """Keyword arguments of ``SoftGripperGrasp`` for this task variant."""
+        return {"objects": tuple(self.objects), "action_mode": self.action_mode, "xy_actions": self.xy_actions,
+                "max_episode_steps": self.max_episode_steps}
+
+    def to_json(self) -> dict:
+        d = asdict(self)
+        d["objects"] = list(self.objects)
+        return d
+
+    @classmethod
+    def from_json(cls, d: dict) -> TrainConfig:
+        known = {f.name for f in fields(cls)}
+        unknown = set(d) - known
+        if unknown:
+            raise ValueError(f"train config: unknown fields {sorted(unknown)}")
+        d = dict(d)
+        if "objects" in d:
+            d["objects"] = tuple(d["objects"])
+        return cls(**d).validate()
+
+    def differences(self, other: TrainConfig) -> list[str]:
+        """Names of the fields whose values differ (for a resume that must match)."""
+        a, b = self.to_json(), other.to_json()
+        return [k for k in a if json.dumps(a[k], sort_keys=True) != json.dumps(b[k], sort_keys=True)]
+
+
+def finite(v: Any) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)

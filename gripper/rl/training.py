@@ -1,0 +1,273 @@
+"""Train PPO or SAC on ``SoftGripperGrasp`` through the native vector env: chunked, logged,
+checkpointed and resumable.
+
+A run folder holds:
+
+- ``config.json``: the :class:`~gripper.rl.config.TrainConfig`, the hyper-parameters in effect
+  and the package versions;
+- ``progress.csv``: one row per chunk (environment steps, wall time, the chunk's training
+  episodes: count, success rate, mean return; the deterministic policy's success over
+  ``eval_episodes`` unseen seeds, overall and per object);
+- ``checkpoints/``: the model after each chunk (``step_<n>.zip``, with its ``VecNormalize``
+  statistics, and for SAC the replay buffer of the latest one);
+- ``policy.zip`` (and ``vecnormalize.pkl``): the final policy.
+
+Determinism: each chunk starts from a seeded reset of the environments and re-seeded random
+generators (Python, NumPy, PyTorch, the action space), both derived from ``(seed, chunk)``, and
+PyTorch runs on one CPU thread. So the same seed gives the same learning curve, and a run
+resumed from a checkpoint continues bitwise as the run that never stopped; only ``wall_s``
+differs. An episode still running at a chunk's end is cut there (not counted in the chunk's
+training statistics).
+
+Example:
+    >>> from gripper.rl.config import TrainConfig                              # doctest: +SKIP
+    >>> from gripper.rl.training import train                                  # doctest: +SKIP
+    >>> train(TrainConfig(steps=131_072), "runs/train/ppo-s0")                 # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import shutil
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from gripper.rl.config import EVAL_SEED, TrainConfig
+from gripper.rl.hyperparams import hyperparams_for
+
+COLUMNS = ["steps", "wall_s", "train_episodes", "train_success", "train_return", "eval_success",
+           "eval_return"]
+CONFIG_FILE, PROGRESS_FILE, POLICY_FILE, NORM_FILE = "config.json", "progress.csv", "policy.zip", "vecnormalize.pkl"
+
+
+def chunk_size(cfg: TrainConfig, hp: dict) -> int:
+    """Steps per chunk: ``chunk_steps`` rounded up to whole PPO rollouts or whole vector steps."""
+    unit = hp["n_steps"] * cfg.n_envs if cfg.algo == "ppo" else cfg.n_envs
+    return -(-cfg.chunk_steps // unit) * unit
+
+
+def chunk_seed(seed: int, chunk: int) -> int:
+    """The generators' seed of one chunk (independent streams for each (seed, chunk))."""
+    return int(np.random.SeedSequence([seed, chunk]).generate_state(1)[0] % (2**31))
+
+
+def _versions() -> dict:
+    import stable_baselines3
+    import torch
+
+    from gripper.core.provenance import versions
+    return {**versions(), "stable_baselines3": stable_baselines3.__version__, "torch": torch.__version__}
+
+
+def _build(cfg: TrainConfig, hp: dict, venv):
+    from stable_baselines3 import PPO, SAC
+
+    kw = {k: v for k, v in hp.items() if k not in ("net_arch", "normalize")}
+    if cfg.algo == "ppo":
+        return PPO("MlpPolicy", venv, seed=cfg.seed, device="cpu", verbose=0,
+                   policy_kwargs={"net_arch": {"pi": list(hp["net_arch"]), "vf": list(hp["net_arch"])}}, **kw)
+    return SAC("MlpPolicy", venv, seed=cfg.seed, device="cpu", verbose=0,
+               policy_kwargs={"net_arch": list(hp["net_arch"])}, **kw)
+
+
+def _make_venv(cfg: TrainConfig, hp: dict):
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    from gripper.envs.sb3 import make_sb3_vec_env
+
+    venv = make_sb3_vec_env(num_envs=cfg.n_envs, nthread=1, **cfg.env_kwargs())
+    if hp["normalize"]:
+        venv = VecNormalize(venv, norm_obs=True, norm_reward=cfg.algo == "ppo", gamma=hp["gamma"])
+    return venv
+
+
+def episode_log(n_envs: int):
+    """An SB3 callback that keeps, for each training episode ending in a chunk, whether the
+    grasp was held at some step and its return (``.done``: a list of (held, return))."""
+    from stable_baselines3.common.callbacks import BaseCallback
+
+    class EpisodeLog(BaseCallback):
+        def __init__(self):
+            super().__init__()
+            self.ret = np.zeros(n_envs)
+            self.held = np.zeros(n_envs, dtype=bool)
+            self.done: list[tuple[bool, float]] = []
+
+        def _on_step(self) -> bool:
+            infos, dones = self.locals["infos"], self.locals["dones"]
+            env = self.training_env
+            self.ret += env.get_original_reward() if hasattr(env, "get_original_reward") else self.locals["rewards"]
+            self.held |= np.array([bool(i.get("is_success", False)) for i in infos])
+            for i in np.flatnonzero(dones):
+                self.done.append((bool(self.held[i]), float(self.ret[i])))
+                self.ret[i], self.held[i] = 0.0, False
+            return True
+
+    return EpisodeLog()
+
+
+def _read_progress(path: Path) -> list[dict]:
+    if not path.exists():
+        return []
+    with open(path, newline="") as f:
+        return [{k: (float(v) if k != "steps" and k != "train_episodes" else int(v)) for k, v in r.items()}
+                for r in csv.DictReader(f)]
+
+
+def _write_progress(path: Path, rows: list[dict], columns: list[str]) -> None:
+    from gripper.core.atomic import write_atomic
+
+    def write(tmp):
+        with open(tmp, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=columns)
+            w.writeheader()
+            for r in rows:
+                w.writerow({k: r[k] for k in columns})
+    write_atomic(path, write)
+
+
+def _latest_checkpoint(folder: Path) -> tuple[int, Path] | None:
+    found = [(int(p.stem.split("_")[1]), p) for p in folder.glob("step_*.zip")] if folder.is_dir() else []
+    return max(found) if found else None
+
+
+def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
+          on_progress: Callable[[dict], None] | None = None) -> list[dict]:
+    """Train ``cfg`` into the run folder ``out``; return the progress rows.
+
+    ``resume``: continue the run in ``out`` from its latest checkpoint (its config must equal
+    ``cfg``). Without it, ``out`` must not hold a run already.
+
+    Raises:
+        ValueError: a bad config, a folder that holds another run (or none to resume), or a
+            config that differs from the one being resumed (the fields named).
+    """
+    import torch
+    from stable_baselines3 import PPO, SAC
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    cfg = cfg.validate()
+    hp = hyperparams_for(cfg.algo, cfg.hyperparams)
+    out = Path(out)
+    ckpt_dir = out / "checkpoints"
+    cfg_path, prog_path = out / CONFIG_FILE, out / PROGRESS_FILE
+    if resume:
+        if not cfg_path.exists():
+            raise ValueError(f"--resume: {out} holds no run to resume (no {CONFIG_FILE})")
+        old = TrainConfig.from_json(json.loads(cfg_path.read_text())["config"])
+        diff = [d for d in old.differences(cfg) if d != "steps"]
+        if diff:
+            raise ValueError(f"--resume: the run in {out} was made with other {', '.join(diff)}")
+    elif cfg_path.exists() or prog_path.exists():
+        raise ValueError(f"--out: {out} already holds a run; give --resume to continue it or another folder")
+    out.mkdir(parents=True, exist_ok=True)
+    ckpt_dir.mkdir(exist_ok=True)
+    from gripper.core.atomic import write_atomic
+
+    write_atomic(cfg_path, lambda tmp: Path(tmp).write_text(json.dumps(
+        {"config": cfg.to_json(), "hyperparams": hp, "versions": _versions()}, indent=2) + "\n"))
+
+    torch.set_num_threads(1)
+    chunk = chunk_size(cfg, hp)
+    venv = _make_venv(cfg, hp)
+    norm = venv if isinstance(venv, VecNormalize) else None
+    rows: list[dict] = []
+    latest = _latest_checkpoint(ckpt_dir) if resume else None
+    if latest is not None:
+        done_steps, path = latest
+        if norm is not None:
+            stats = VecNormalize.load(str(path.with_name(path.stem + "_" + NORM_FILE)), norm.venv)
+            norm.obs_rms, norm.ret_rms = stats.obs_rms, stats.ret_rms
+        cls = PPO if cfg.algo == "ppo" else SAC
+        model = cls.load(str(path), env=venv, device="cpu")
+        if cfg.algo == "sac":
+            model.load_replay_buffer(str(ckpt_dir / "replay_buffer.pkl"))
+        rows = [r for r in _read_progress(prog_path) if r["steps"] <= done_steps]
+    else:
+        done_steps = 0
+        model = _build(cfg, hp, venv)
+    from gripper.rl.evaluation import evaluate_policy, make_eval_env
+
+    eval_env = make_eval_env(cfg.env_kwargs(), cfg.eval_episodes)
+    columns = COLUMNS + [f"eval_{o}" for o in sorted(set(cfg.objects))]
+    t_wall = rows[-1]["wall_s"] if rows else 0.0
+    try:
+        while done_steps < cfg.steps:
+            t0 = time.perf_counter()
+            k = done_steps // chunk
+            s = chunk_seed(cfg.seed, k)
+            model.set_random_seed(s)  # Python, NumPy, PyTorch, the action space, the envs' seeds
+            model._last_obs = venv.reset()
+            if norm is not None:
+                model._last_original_obs = norm.get_original_obs()
+            model._last_episode_starts = np.ones(cfg.n_envs, dtype=bool)
+            log = episode_log(cfg.n_envs)
+            model.learn(chunk, reset_num_timesteps=False, callback=log, progress_bar=False)
+            done_steps = model.num_timesteps
+            if norm is not None:
+                norm.training = False
+
+            def act(obs):
+                o = norm.normalize_obs(obs) if norm is not None else obs
+                return model.predict(o, deterministic=True)[0]
+
+            ev = evaluate_policy(act, cfg.env_kwargs(), cfg.eval_episodes, EVAL_SEED, venv=eval_env)
+            if norm is not None:
+                norm.training = True
+            path = ckpt_dir / f"step_{done_steps}.zip"
+            model.save(str(path))
+            if norm is not None:
+                norm.save(str(path.with_name(path.stem + "_" + NORM_FILE)))
+            if cfg.algo == "sac":
+                model.save_replay_buffer(str(ckpt_dir / "replay_buffer.pkl"))
+            t_wall += time.perf_counter() - t0
+            row: dict[str, Any] = {
+                "steps": done_steps, "wall_s": round(t_wall, 1), "train_episodes": len(log.done),
+                "train_success": float(np.mean([d[0] for d in log.done])) if log.done else float("nan"),
+                "train_return": float(np.mean([d[1] for d in log.done])) if log.done else float("nan"),
+                "eval_success": ev["success"], "eval_return": ev["return"],
+                **{f"eval_{o}": ev["by_object"].get(o, float("nan")) for o in sorted(set(cfg.objects))}}
+            rows.append(row)
+            _write_progress(prog_path, rows, columns)
+            if on_progress is not None:
+                on_progress(row)
+        model.save(str(out / POLICY_FILE))
+        if norm is not None:
+            norm.save(str(out / NORM_FILE))
+    finally:
+        eval_env.close()
+        venv.close()
+    return rows
+
+
+def load_policy(run: str | Path) -> tuple[TrainConfig, Callable[[np.ndarray], np.ndarray]]:
+    """A run folder's config and its final policy as a deterministic ``act(obs batch)``."""
+    from stable_baselines3 import PPO, SAC
+
+    run = Path(run)
+    if not (run / CONFIG_FILE).exists() or not (run / POLICY_FILE).exists():
+        raise ValueError(f"--run: {run} holds no trained policy ({CONFIG_FILE} and {POLICY_FILE})")
+    cfg = TrainConfig.from_json(json.loads((run / CONFIG_FILE).read_text())["config"])
+    model = (PPO if cfg.algo == "ppo" else SAC).load(str(run / POLICY_FILE), device="cpu")
+    norm = None
+    if (run / NORM_FILE).exists():
+        import pickle
+
+        with open(run / NORM_FILE, "rb") as f:
+            norm = pickle.load(f)
+        norm.training = False
+
+    def act(obs):
+        o = norm.normalize_obs(obs) if norm is not None else obs
+        return model.predict(o, deterministic=True)[0]
+    return cfg, act
+
+
+def remove_run(out: str | Path) -> None:
+    """Delete a run folder (tests)."""
+    shutil.rmtree(out, ignore_errors=True)
