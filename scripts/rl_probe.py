@@ -6,6 +6,13 @@ the training episodes' success rate and return (SB3's episode buffers, last 100 
 deterministic policy's success over ``--eval`` episodes with seeds never used in training.
 Writes one CSV row per checkpoint to ``--out`` and prints them. Needs the ``rl`` extra.
 
+The variants before ``v4`` were measured on ``SoftGripperGrasp-v3`` (package 0.10.0). They now
+run on v4 with v3's palm set-points and success rule (``V3``), but v4's reach and contact
+terms, so their curves are not v3's exactly; ``git checkout`` 0.10.0 to repeat them as they were.
+``gripper train`` is the entry point for v4 itself; ``v4`` and ``v4_tuned`` here are its first
+probes (SB3's default hyper-parameters, and the baselines' ``n_steps``/``batch_size`` with
+``VecNormalize``).
+
 Variants (``--variant``), each one change from ``issue`` (the setup of issue 25: block, synergy
 actions, dense reward):
 

@@ -13,7 +13,7 @@ from gymnasium.utils.env_checker import check_env
 import gripper  # noqa: F401  (registers the environment)
 from gripper.envs.grasp_env import SoftGripperGraspEnv
 
-ENV_ID = "gripper:SoftGripperGrasp-v3"
+ENV_ID = "gripper:SoftGripperGrasp-v4"
 
 # Warnings check_env may raise, each with its reason:
 ALLOWED_WARNINGS = (
@@ -101,7 +101,7 @@ def test_sync_and_async_vector_envs_and_pickle():
         venv = gym.make_vec(ENV_ID, num_envs=2, vectorization_mode=mode, objects="block")
         obs, _ = venv.reset(seed=0)
         obs2, *_ = venv.step(venv.action_space.sample())
-        assert obs2.shape == (2, 99)
+        assert obs2.shape == (2, 107)
         venv.close()
     env = gym.make(ENV_ID, objects="block")
     env.reset(seed=1)
@@ -145,6 +145,7 @@ def test_docstring_tables_match_spaces():
     ({"camera": "drone"}, "camera"),
     ({"palm_control": "torque"}, "palm_control"),
     ({"palm_speed": 0.0}, "palm_speed"),
+    ({"servo_control": "pwm"}, "servo_control"),
 ])
 def test_bad_constructor_arguments(kwargs, field):
     with pytest.raises(ValueError, match=re.escape(field)):
@@ -232,14 +233,30 @@ def test_velocity_palm_moves_its_set_point_at_palm_speed_and_stays_in_range():
     assert obs[i] == pytest.approx(env.config.params.finger.length + 0.004, abs=1e-12)
 
 
-def test_position_palm_control_keeps_the_v2_action():
-    """palm_control="position": the lift entry is the height set-point itself."""
-    env = SoftGripperGraspEnv(objects="block", action_mode="synergy", palm_control="position")
+def test_position_control_keeps_the_v3_actions():
+    """palm_control and servo_control "position": the entries are the set-points themselves."""
+    env = SoftGripperGraspEnv(objects="block", action_mode="synergy", palm_control="position",
+                              servo_control="position")
     env.reset(seed=0)
-    a = env.unwrapped.lift_action(0.2)
+    a, c = env.unwrapped.lift_action(0.2), env.unwrapped.servo_action(1.2)
     for _ in range(3):
-        obs, *_ = env.step(np.array([-1.0, a]))
+        obs, *_ = env.step(np.array([c, a]))
     assert obs[env.observation_structure["palm_setpoint"][0] + 2] == pytest.approx(0.2, abs=1e-12)
+    assert obs[env.observation_structure["servo_setpoint"][0]] == pytest.approx(1.2, abs=1e-12)
+
+
+def test_velocity_servo_moves_its_set_point_at_the_slew_rate():
+    env = SoftGripperGraspEnv(objects="block", action_mode="synergy")
+    obs, _ = env.reset(seed=0)
+    i = env.observation_structure["servo_setpoint"][0]
+    step = env.config.params.servo.slew_rate * env.config.control_period
+    assert obs[i] == 0.0  # the fingers start open
+    for k in range(1, 4):
+        obs, *_ = env.step(np.array([0.5, 0.0]))
+        assert obs[i] == pytest.approx(0.5 * k * step, abs=1e-12)
+    for _ in range(10):
+        obs, *_ = env.step(np.array([-1.0, 0.0]))
+    assert obs[i] == 0.0
 
 
 def test_a_velocity_grasp_succeeds_and_the_episode_runs_on():

@@ -21,6 +21,7 @@ from gripper.rl.hyperparams import PPO_HYPERPARAMS, hyperparams_for
     ({"hyperparams": {"n_stepz": 3}}, "hyperparams.n_stepz"),
     ({"hyperparams": {"learning_rate": -1.0}}, "hyperparams.learning_rate"),
     ({"hyperparams": {"net_arch": []}}, "hyperparams.net_arch"),
+    ({"reward_weights": {"grip": 1.0}}, "reward_weights"),
 ])
 def test_bad_train_config_names_the_field(kwargs, field):
     with pytest.raises(ValueError, match=re.escape(field)):

@@ -200,12 +200,12 @@ def _needs_rl(command: str) -> None:
                          "pip install -e '.[rl]'")
 
 
-def _hyperparam_overrides(items: list[str]) -> dict:
+def _hyperparam_overrides(items: list[str], flag: str = "--set") -> dict:
     out = {}
     for item in items or []:
         key, sep, value = item.partition("=")
         if not sep or not key:
-            raise ValueError(f"--set: expected KEY=VALUE, got {item!r}")
+            raise ValueError(f"{flag}: expected KEY=VALUE, got {item!r}")
         try:
             out[key.strip()] = json.loads(value)
         except json.JSONDecodeError:
@@ -219,7 +219,8 @@ def _cmd_train(args) -> int:
     cfg = TrainConfig(algo=args.algo, objects=tuple(o.strip() for o in args.objects.split(",") if o.strip()),
                       action_mode=args.action_mode, xy_actions=args.xy, steps=args.steps, seed=args.seed,
                       n_envs=args.n_envs, chunk_steps=args.chunk_steps, eval_episodes=args.eval_episodes,
-                      hyperparams=_hyperparam_overrides(args.set)).validate()
+                      hyperparams=_hyperparam_overrides(args.set),
+                      reward_weights=_hyperparam_overrides(args.reward_weight, "--reward-weight")).validate()
     check_output_dir(args.out)
     if args.video:
         from gripper.render.video import check_output_path
@@ -662,6 +663,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help=f"evaluation episodes, seeds from {EVAL_SEED} on (default %(default)s)")
     tr.add_argument("--set", action="append", metavar="KEY=VALUE",
                     help="override a hyper-parameter, e.g. --set n_epochs=5 (repeatable)")
+    tr.add_argument("--reward-weight", action="append", metavar="TERM=W",
+                    help="override a dense reward weight, e.g. --reward-weight contact=1 (repeatable)")
     tr.add_argument("--out", required=True, metavar="DIR", help="run folder")
     tr.add_argument("--resume", action="store_true", help="continue the run in --out from its latest checkpoint")
     tr.add_argument("--video", metavar="FILE.mp4", help="also write a video of the final policy")

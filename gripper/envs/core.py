@@ -52,12 +52,16 @@ WORKSPACE_RADIUS = 0.15
 WORKSPACE_FLOOR = -0.020
 IDENTITY_QUAT = np.array([1.0, 0.0, 0.0, 0.0])  # orientation reported for a flex object
 
+# A finger touches the object above this normal force [N] (the contact reward).
+CONTACT_FORCE = 0.05
 # Length scale of the reach reward [m]: 1 - tanh(d / REACH_SCALE) falls from 0.52 at the
 # benchmark's grasp pose over the block (d = 26 mm) to 0.06 at the start (d = 88 mm).
 REACH_SCALE = 0.05
 DEFAULT_REWARD_WEIGHTS = {
     "reach": 1.0,     # times 1 - tanh(distance between the grasp point and the object / REACH_SCALE)
-    "contact": 0.25,  # fraction of fingers whose pads press on something
+    # fraction of fingers pressing on the object: 0 by default, since paying for touch taught PPO
+    # to touch with half-closed fingers during the descent and stop there (docs/environment.md)
+    "contact": 0.0,
     "lift": 2.0,      # object rise above its start / success height, clipped to [0, 1]
     "success": 5.0,   # per control step at which the grasp counts as held
     "damage": 10.0,   # once, when the object is damaged
@@ -81,6 +85,7 @@ class EnvConfig(Validated):
     xy_actions: bool = False
     palm_control: str = "velocity"
     palm_speed: float = PALM_SPEED
+    servo_control: str = "velocity"
     frame_skip: int = 10
     reward_type: str = "dense"
     reward_weights: dict = field(default_factory=lambda: dict(DEFAULT_REWARD_WEIGHTS))
@@ -103,6 +108,8 @@ class EnvConfig(Validated):
             raise ValueError(f"action_mode: must be 'fingers' or 'synergy', got {self.action_mode!r}")
         if self.palm_control not in ("velocity", "position"):
             raise ValueError(f"palm_control: must be 'velocity' or 'position', got {self.palm_control!r}")
+        if self.servo_control not in ("velocity", "position"):
+            raise ValueError(f"servo_control: must be 'velocity' or 'position', got {self.servo_control!r}")
         if not (isinstance(self.palm_speed, int | float) and math.isfinite(self.palm_speed)
                 and 0 < self.palm_speed <= 1.0):
             raise ValueError(f"palm_speed: must be in (0, 1] m/s, got {self.palm_speed!r}")
@@ -150,9 +157,11 @@ def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
     nf, nh = cfg.n_fingers, cfg.params.finger.n_segments - 1
     parts = [("hinge_angle", nf * nh, "rad"), ("hinge_velocity", nf * nh, "rad/s"),
              ("cable_shortening", nf, "m"), ("cable_tension", nf, "N"), ("servo_angle", nf, "rad"),
+             ("servo_setpoint", nf, "rad"),
              ("palm_height", 1, "m"), ("palm_setpoint", 3, "m"),
              ("object_pos_rel_palm", 3, "m"), ("object_quat", 4, "-"),
              ("pad_force", nf * cfg.params.finger.n_segments, "N"),
+             ("finger_object_force", nf, "N"),
              # what the servos report (gripper.sim.sensing: quantised, noisy)
              ("sensed_servo_position", nf, "rad"), ("sensed_servo_current", nf, "A"),
              ("sensed_spool_tension", nf, "N")]
@@ -231,16 +240,16 @@ class Scene:
         """Map an action in [-1, 1] to the actuator controls (nu,), given the ``previous``
         control period's controls.
 
-        Servos: ``offset + scale * action`` over [0, full travel]. Palm stages (lift z in
-        [z_min, z_max], x/y in ±XY_ACTION_RANGE), by ``palm_control``: ``"position"``, the
-        set-point mapped linearly as the servos; ``"velocity"``, the previous set-point moved by
-        ``action * palm_speed * control period`` and kept in its range. Actuators without an
+        Servos (spool angle in [0, full travel]) by ``servo_control``, palm stages (lift z in
+        [z_min, z_max], x/y in ±XY_ACTION_RANGE) by ``palm_control``: ``"position"``, the
+        set-point mapped linearly from [-1, 1] onto its range; ``"velocity"``, the previous
+        set-point moved by ``action × speed × control period`` and kept in its range (servos:
+        the servo's slew rate, its no-load speed; palm: ``palm_speed``). Actuators without an
         action stay at 0."""
         a = np.clip(action, -1.0, 1.0)[self._ctrl_source]
         u = self._ctrl_offset + self._ctrl_scale * a
-        if self.cfg.palm_control == "velocity":
-            p = self._palm_act
-            u[p] = np.clip(previous[p] + self._palm_step * a[p], self._palm_lo, self._palm_hi)
+        for idx, step, lo, hi in self._velocity:
+            u[idx] = np.clip(previous[idx] + step * a[idx], lo, hi)
         return u
 
     def _build_control_map(self) -> None:
@@ -264,9 +273,13 @@ class Scene:
                 palm.append(self.act_lift[name])
                 lo.append(-XY_ACTION_RANGE)
                 hi.append(XY_ACTION_RANGE)
-        self._palm_act = np.array(palm)
-        self._palm_lo, self._palm_hi = np.array(lo), np.array(hi)
-        self._palm_step = self.cfg.palm_speed * self.cfg.control_period
+        dt = self.cfg.control_period
+        # velocity-controlled actuators: (indices, step per unit action, lower, upper bounds)
+        self._velocity: list[tuple[np.ndarray, float, np.ndarray | float, np.ndarray | float]] = []
+        if self.cfg.palm_control == "velocity":
+            self._velocity.append((np.array(palm), self.cfg.palm_speed * dt, np.array(lo), np.array(hi)))
+        if self.cfg.servo_control == "velocity":
+            self._velocity.append((np.asarray(self.servo), self.params.servo.slew_rate * dt, 0.0, self.servo_max))
 
 
 class SceneSet:
@@ -343,13 +356,13 @@ def state_vector(ep: EpisodeState) -> np.ndarray:
 
 
 def load_state(ep: EpisodeState, state: np.ndarray, ctrl: np.ndarray) -> None:
-    """Put the rollout's final state into the episode's data and refresh positions."""
+    """Put the rollout's final state into the episode's data and compute its contacts and
+    contact forces (``mj_forward``, which changes no state: the finger-object forces of the
+    observation, the reward and the rigid objects' damage are read from it)."""
     m, d = ep.scene.model, ep.data
     mujoco.mj_setState(m, d, state, STATE_SPEC)
     d.ctrl[:] = ctrl
-    mujoco.mj_kinematics(m, d)
-    if m.nflex:
-        mujoco.mj_flex(m, d)
+    mujoco.mj_forward(m, d)
 
 
 def observe(ep: EpisodeState, sens: np.ndarray) -> np.ndarray:
@@ -367,8 +380,9 @@ def observe(ep: EpisodeState, sens: np.ndarray) -> np.ndarray:
     reel = q[s.reel_q]
     r = s.sensor.read(sens, ep.sensor_rng)
     return np.concatenate([
-        q[s.hinge_q], d.qvel[s.hinge_v], reel, sens[s.tension], reel / s.spool, palm[2:3], setpoint, pos, quat,
-        sens[s.pads], r.position, r.current, r.tension])
+        q[s.hinge_q], d.qvel[s.hinge_v], reel, sens[s.tension], reel / s.spool, d.ctrl[s.servo], palm[2:3],
+        setpoint, pos, quat,
+        sens[s.pads], s.probe.finger_forces(d), r.position, r.current, r.tension])
 
 
 def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.ndarray, cfg: EnvConfig,
@@ -380,8 +394,9 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     rel = obs[struct["object_pos_rel_palm"][0]:struct["object_pos_rel_palm"][0] + 3]
     # scalar math on 3-vectors: numpy's per-call cost dominates at this size
     reach = math.dist(rel, (0.0, 0.0, -0.5 * s.params.finger.length))  # to the grasp point
-    pads = sens[s.pads].reshape(cfg.n_fingers, -1).sum(axis=1)
-    touching = float(np.count_nonzero(pads > 0.05)) / cfg.n_fingers  # 0.05 N: above sensor noise
+    i = struct["finger_object_force"][0]
+    finger = obs[i:i + cfg.n_fingers]  # each finger's normal force on the object, all element faces
+    touching = float(np.count_nonzero(finger > CONTACT_FORCE)) / cfg.n_fingers
     # damage: the object's own criterion where it can be read at every step
     if s.obj.kind in STRAIN_DAMAGE_KINDS:
         ep.peak_strain = max(ep.peak_strain, s.probe.edge_strain(d))
@@ -393,7 +408,7 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
         measure = float(np.abs(d.plastic[a:]).max()) if d.plastic.size else 0.0
         measure = s.obj.damage_limit * 2.0 if measure > 0.0 else 0.0
     else:
-        measure = float(pads.sum())
+        measure = float(finger.sum())  # the benchmark's peak total contact force
     newly_damaged = (not ep.damaged) and s.obj.is_damaged(measure)
     ep.damaged = ep.damaged or newly_damaged
     # held: lifted past the success height and not slipping relative to the palm

@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v3``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v4``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v3")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v4")``.
 """
 
 from __future__ import annotations
@@ -34,7 +34,8 @@ RENDER_MODES = ["rgb_array", "depth_array"] + (
 
 def make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode, xy_actions,
                 frame_skip, reward_type, reward_weights, terminate_on_success, success_hold_s,
-                params, calibration=None, palm_control="velocity", palm_speed=PALM_SPEED) -> EnvConfig:
+                params, calibration=None, palm_control="velocity", palm_speed=PALM_SPEED,
+                servo_control="velocity") -> EnvConfig:
     if isinstance(objects, str):
         objects = tuple(o.strip() for o in objects.split(",") if o.strip())
     if params is None:
@@ -47,7 +48,7 @@ def make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, acti
     return EnvConfig(
         objects=tuple(objects), pose_noise=pose_noise, yaw_noise=yaw_noise, mass_noise=mass_noise,
         friction_noise=friction_noise, action_mode=action_mode, xy_actions=xy_actions,
-        palm_control=palm_control, palm_speed=palm_speed,
+        palm_control=palm_control, palm_speed=palm_speed, servo_control=servo_control,
         frame_skip=frame_skip, reward_type=reward_type, reward_weights=dict(reward_weights or {}),
         terminate_on_success=terminate_on_success, success_hold_s=success_hold_s, params=params,
     ).validate()
@@ -100,23 +101,25 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Action space
 
-    ``Box(-1, 1, (n,), float32)``. The servo entries map linearly onto their set-point range; the
-    palm entries are, by ``palm_control``, a velocity (default) or a position set-point:
+    ``Box(-1, 1, (n,), float32)``. By default every entry is a velocity: it moves its
+    actuator's set-point, which is observed, and 0 holds it (``servo_control`` and
+    ``palm_control``, ``"velocity"`` or ``"position"``):
 
     | action_mode | index | actuator | -1 | +1 | unit |
     |---|---|---|---|---|---|
-    | fingers | 0-3 | servo of finger k (cable reeled in) | 0 | servo travel (π) | rad |
+    | fingers | 0-3 | servo of finger k (cable reeled in) | open at the slew rate | close at the slew rate | rad/s |
     | fingers | 4 | lift: palm-face height | down at palm_speed | up at palm_speed | m/s |
-    | synergy | 0 | all four servos together | 0 | servo travel (π) | rad |
+    | synergy | 0 | all four servos together | open at the slew rate | close at the slew rate | rad/s |
     | synergy | 1 | lift: palm-face height | down at palm_speed | up at palm_speed | m/s |
     | either, xy_actions | last 2 | palm x and y | -palm_speed | +palm_speed | m/s |
 
-    ``palm_control="velocity"``: each palm entry moves its set-point by
-    ``action × palm_speed × control period`` (0.10 m/s and 20 ms by default: 2 mm a step), kept
-    in its range: palm-face height from fingertips 4 mm above the floor up to home (0.25 m), x
-    and y within ±0.02 m. 0 holds the palm still. ``palm_control="position"``: the entry is the
-    set-point itself, -1 and +1 being the ends of those ranges (``SoftGripperGrasp-v2``'s
-    action). The set-points are observed (``palm_setpoint``).
+    ``"velocity"``: an entry moves its set-point by ``action × speed × control period``, kept in
+    its range. Servo: the spool angle in [0, servo travel π], at the servo's slew rate (its
+    no-load speed, 7.48 rad/s: 0.15 rad a step); palm: the palm-face height from fingertips
+    4 mm above the floor up to home (0.25 m), x and y within ±0.02 m, at ``palm_speed`` (0.10
+    m/s: 2 mm a step). ``"position"``: the entry is the set-point itself, -1 and +1 being the
+    ends of those ranges (v3's actions). The set-points are observed (``servo_setpoint``,
+    ``palm_setpoint``), so the state stays Markov.
 
     ``env.unwrapped.lift_action(height)``, ``servo_action(angle)`` and ``xy_action(offset)`` give
     the position-mode action value for a palm height [m], a spool angle [rad] or a palm x/y
@@ -125,15 +128,17 @@ class SoftGripperGraspEnv(gym.Env):
     one (first-order hold, as a stage's trajectory generator; a step would jerk the stiff stage),
     while the servo set-points are held (zero-order hold, as a hobby servo's 50 Hz PWM command).
     The servos slew their set-point at the contraction speed (the servo's no-load speed), so a
-    jump in the action is followed at the speed the hardware allows.
+    jump in a position action is followed at the speed the hardware allows.
 
-    Why velocity: PPO and SAC explore with Gaussian action noise of σ ≈ 1 at the start. On a
+    Why velocities: PPO and SAC explore with Gaussian action noise, σ ≈ 1 at the start. On a
     position set-point that noise moves the palm by centimetres every 20 ms and shakes any grasp
-    apart (``docs/environment.md``); on a velocity it is a slow random walk of the palm.
+    apart, and an untrained policy (action ≈ 0) descends with the fingers half closed, which
+    lands them on the object instead of around it; with velocities the noise is a slow random
+    walk from the starting state (palm still, fingers open) (``docs/environment.md``).
 
     ## Observation space
 
-    ``Box(-inf, inf, (99,), float64)`` with the default four fingers of six elements; the layout
+    ``Box(-inf, inf, (107,), float64)`` with the default four fingers of six elements; the layout
     is ``env.observation_structure`` (name -> (start, size, unit)):
 
     | part | indices | size | unit |
@@ -143,14 +148,16 @@ class SoftGripperGraspEnv(gym.Env):
     | cable_shortening | 40-43 | 4 | m |
     | cable_tension | 44-47 | 4 | N |
     | servo_angle | 48-51 | 4 | rad |
-    | palm_height | 52-52 | 1 | m |
-    | palm_setpoint | 53-55 | 3 | m |
-    | object_pos_rel_palm | 56-58 | 3 | m |
-    | object_quat | 59-62 | 4 | - |
-    | pad_force | 63-86 | 24 | N |
-    | sensed_servo_position | 87-90 | 4 | rad |
-    | sensed_servo_current | 91-94 | 4 | A |
-    | sensed_spool_tension | 95-98 | 4 | N |
+    | servo_setpoint | 52-55 | 4 | rad |
+    | palm_height | 56-56 | 1 | m |
+    | palm_setpoint | 57-59 | 3 | m |
+    | object_pos_rel_palm | 60-62 | 3 | m |
+    | object_quat | 63-66 | 4 | - |
+    | pad_force | 67-90 | 24 | N |
+    | finger_object_force | 91-94 | 4 | N |
+    | sensed_servo_position | 95-98 | 4 | rad |
+    | sensed_servo_current | 99-102 | 4 | A |
+    | sensed_spool_tension | 103-106 | 4 | N |
 
     The ``sensed_*`` entries are what the servos report (:mod:`gripper.sim.sensing`: present
     position in encoder counts, present current in 2.69 mA units, a spool load cell, each with
@@ -163,7 +170,10 @@ class SoftGripperGraspEnv(gym.Env):
     position is its reference point (body origin, the bag's contents, or a flex's vertex
     centroid) relative to the palm centre; its orientation is a unit quaternion (identity for
     balloon and paper box, whose flex has no single frame); pad forces are the touch sensors of
-    each element's pad, finger-major. Forces (tension, pads) are the sensor values of the last
+    each element's pad (the inner faces' tooth tops), finger-major; the finger-object force is
+    each finger's total normal contact force on the object over all its element faces (as the
+    benchmark's force records; in the fingers' curled power grasp the object rests on the
+    distal elements' hinge edges, which no pad covers). Forces (tension, pads) are the sensor values of the last
     physics step of the control period; everything else is the state at its end.
 
     ## Rewards
@@ -172,9 +182,10 @@ class SoftGripperGraspEnv(gym.Env):
     else 0. ``"dense"``: the sum of these terms, each returned in ``info`` (weights in
     ``reward_weights``, defaults in brackets):
 
-    - ``reward_reach`` = -w [1.0] × distance from the grasp point (mid-finger on the palm axis)
-      to the object [m];
-    - ``reward_contact`` = w [0.25] × fraction of fingers whose pads press (> 0.05 N);
+    - ``reward_reach`` = w [1.0] × (1 − tanh(d / 0.05 m)), d the distance from the grasp point
+      (mid-finger on the palm axis) to the object [m];
+    - ``reward_contact`` = w [0.0] × fraction of fingers pressing on the object (> 0.05 N): off
+      by default, since paying for touch held PPO in a local optimum (``docs/environment.md``);
     - ``reward_lift`` = w [2.0] × clip(object rise / 0.08 m, 0, 1);
     - ``reward_success`` = w [5.0] × is_success;
     - ``reward_damage`` = -w [10.0], once, when the object becomes damaged;
@@ -182,7 +193,13 @@ class SoftGripperGraspEnv(gym.Env):
 
     ``info["is_success"]`` is true once the object has been at least ``success_height`` (0.08 m)
     above its start, without slipping ``max_slip`` (20 mm) relative to the palm, for
-    ``success_hold_s`` (1 s), and is not damaged.
+    ``success_hold_s`` (1 s), and is not damaged: the grasp benchmark's definition of a held
+    grasp (``gripper bench``), read at every control step.
+
+    Every dense term but the penalties is ≥ 0, and success does not end the episode
+    (``terminate_on_success=False``): each held step keeps paying. Ending it on success would
+    make the dense reward teach the agent to hover just below the success height, since a held
+    grasp would forfeit the lift reward of every remaining step (``docs/environment.md``).
 
     ## Starting state
 
@@ -193,16 +210,17 @@ class SoftGripperGraspEnv(gym.Env):
     ## Episode end
 
     Terminated when the object leaves the workspace (more than 0.15 m from the axis, or below the
-    floor), when it is damaged (its library criterion: contact force over the limit for rigid
-    parts, membrane or film strain for balloon and bag; for the paper box any plastic crease,
-    stricter than the benchmark's spring-back dent), on success if ``terminate_on_success``, or
+    floor), when it is damaged (its library criterion: the fingers' total contact force on a
+    rigid part over its limit, read at every control step as the benchmark reads it; membrane or
+    film strain for balloon and bag; for the paper box any plastic crease, stricter than the
+    benchmark's spring-back dent), on success if ``terminate_on_success``, or
     when the simulation goes unstable (MuJoCo warning or non-finite state: ``info["unstable"]``
     and ``info["error"]``, reward 0, the last finite observation). Truncated after
     ``max_episode_steps`` (300 control steps, 6 s, by registration).
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v3", **kwargs)``:
+    ``gymnasium.make("gripper:SoftGripperGrasp-v4", **kwargs)``:
 
     | argument | default | meaning |
     |---|---|---|
@@ -215,7 +233,10 @@ class SoftGripperGraspEnv(gym.Env):
     | frame_skip | 10 | physics steps (2 ms) per control step: 20 ms control period |
     | reward_type | "dense" | "dense" or "sparse" |
     | reward_weights | see Rewards | dict overriding some weights |
-    | terminate_on_success | True | end the episode once the grasp is held |
+    | palm_control | "velocity" | "velocity" or "position" (see Action space) |
+    | palm_speed | 0.10 | palm speed at a velocity action of ±1 [m/s] |
+    | servo_control | "velocity" | "velocity" or "position" (see Action space) |
+    | terminate_on_success | False | end the episode once the grasp is held |
     | success_hold_s | 1.0 | hold time that counts as success [s] |
     | params | None | GripperParams, or a JSON/TOML parameter file path |
     | calibration | None | calibration JSON (``gripper calibrate``): fitted hinge springs for ``params`` |
@@ -252,10 +273,19 @@ class SoftGripperGraspEnv(gym.Env):
       5 x 5 x 6; their convergence check is in ``docs/performance.md``), so episodes with those
       objects have other dynamics; the rigid objects and the balloon are unchanged, and so are
       the spaces, rewards and episode rules. v2 is no longer registered.
+    - v4, package 0.11.0: a standard RL algorithm learns the task (``docs/environment.md``:
+      why v3 taught nothing, and the baselines). The palm
+      and the servo actions are velocities (``palm_control``, ``servo_control``; ``"position"``
+      keeps v3's set-points); the observation gains the servo and palm set-points and each
+      finger's contact force on the object (107 entries, was 96); the rigid objects' damage
+      reads that force (v3 read the pads' touch sensors, which the curled grasp never touches,
+      so it was always 0), and so does the contact reward, now off by default; the reach reward
+      is 1 - tanh(d / 5 cm) (was -d); success no longer ends the episode. The physics is
+      unchanged. v3 is no longer registered.
 
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v3", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v4", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """
@@ -268,17 +298,19 @@ class SoftGripperGraspEnv(gym.Env):
                  reward_weights: dict | None = None, terminate_on_success: bool = False,
                  success_hold_s: float = 1.0, params: Any = None, render_mode: str | None = None,
                  width: int = 640, height: int = 480, camera: str = "front", calibration: Any = None,
-                 palm_control: str = "velocity", palm_speed: float = PALM_SPEED):
+                 palm_control: str = "velocity", palm_speed: float = PALM_SPEED,
+                 servo_control: str = "velocity"):
         self.config = make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode,
                                   xy_actions, frame_skip, reward_type, reward_weights, terminate_on_success,
-                                  success_hold_s, params, calibration, palm_control, palm_speed)
+                                  success_hold_s, params, calibration, palm_control, palm_speed,
+                                  servo_control)
         check_render_args(render_mode, width, height, camera)
         self._init_kwargs = dict(
             objects=self.config.objects, pose_noise=pose_noise, yaw_noise=yaw_noise, mass_noise=mass_noise,
             friction_noise=friction_noise, action_mode=action_mode, xy_actions=xy_actions,
             frame_skip=frame_skip, reward_type=reward_type, reward_weights=reward_weights,
             terminate_on_success=terminate_on_success, success_hold_s=success_hold_s,
-            palm_control=palm_control, palm_speed=palm_speed,
+            palm_control=palm_control, palm_speed=palm_speed, servo_control=servo_control,
             params=self.config.params, render_mode=render_mode, width=width, height=height, camera=camera)
         self.render_mode, self.width, self.height, self.camera = render_mode, width, height, camera
         self.metadata = {**self.metadata, "render_fps": int(round(1.0 / self.config.control_period))}

@@ -44,6 +44,8 @@ class TrainConfig(Validated):
         eval_episodes: deterministic-policy episodes per evaluation, seeds from ``EVAL_SEED``.
         max_episode_steps: truncation (control steps of 20 ms).
         hyperparams: overrides of :mod:`gripper.rl.hyperparams`'s values for ``algo``.
+        reward_weights: overrides of the environment's dense reward weights (its
+            ``reward_weights``; none for the baselines).
     """
 
     algo: str = "ppo"
@@ -57,6 +59,7 @@ class TrainConfig(Validated):
     eval_episodes: int = 50
     max_episode_steps: int = 300
     hyperparams: dict = field(default_factory=dict)
+    reward_weights: dict = field(default_factory=dict)
 
     def validate(self) -> TrainConfig:
         if self.algo not in ALGOS:
@@ -81,12 +84,15 @@ class TrainConfig(Validated):
         from gripper.rl.hyperparams import hyperparams_for
 
         hyperparams_for(self.algo, self.hyperparams)  # raises on an unknown or bad override
+        from gripper.envs.core import EnvConfig
+
+        EnvConfig(objects=tuple(self.objects), reward_weights=dict(self.reward_weights)).validate()
         return self
 
     def env_kwargs(self) -> dict[str, Any]:
         """Keyword arguments of ``SoftGripperGrasp`` for this task variant."""
         return {"objects": tuple(self.objects), "action_mode": self.action_mode, "xy_actions": self.xy_actions,
-                "max_episode_steps": self.max_episode_steps}
+                "max_episode_steps": self.max_episode_steps, "reward_weights": dict(self.reward_weights)}
 
     def to_json(self) -> dict:
         d = asdict(self)

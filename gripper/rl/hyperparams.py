@@ -30,6 +30,10 @@ PPO_HYPERPARAMS: dict[str, Any] = {
     "vf_coef": 0.5,          # SB3 default
     "max_grad_norm": 0.5,    # SB3 default
     "net_arch": [64, 64],    # SB3 default (separate policy and value networks, tanh)
+    "use_sde": False,
+    "sde_sample_freq": 16,
+    "log_std_init": 0.0,     # SB3 default
+    "ortho_init": True,      # SB3 default
     "normalize": True,       # VecNormalize on observations and rewards (see the module docstring)
 }
 
@@ -50,8 +54,14 @@ SAC_HYPERPARAMS: dict[str, Any] = {
 HYPERPARAMS = {"ppo": PPO_HYPERPARAMS, "sac": SAC_HYPERPARAMS}
 
 
+POLICY_KWARGS = ("net_arch", "log_std_init", "ortho_init")  # passed in policy_kwargs
+NOT_SB3 = ("normalize",)
+
+
 def _check(name: str, value: Any, default: Any) -> None:
-    if isinstance(default, bool):
+    if name == "log_std_init":
+        ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+    elif isinstance(default, bool):
         ok = isinstance(value, bool)
     elif isinstance(default, int):
         ok = isinstance(value, int) and not isinstance(value, bool) and value >= 0

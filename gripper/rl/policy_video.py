@@ -35,10 +35,11 @@ def record_policy_video(act: Callable[[np.ndarray], np.ndarray], env_kwargs: dic
 
     out = check_output_path(out)
     check_view(width, height, camera, prefix="--")
-    env = gym.make(f"gripper:{ENV_ID}", render_mode="rgb_array", width=width, height=height, camera=camera,
+    env: Any = gym.make(f"gripper:{ENV_ID}", render_mode="rgb_array", width=width, height=height, camera=camera,
                    **env_kwargs)
     t0 = time.perf_counter()
-    frames, held = [], False
+    frames: list[np.ndarray] = []
+    held = False
     try:
         obs, info = env.reset(seed=seed)
         u = env.unwrapped

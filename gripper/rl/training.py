@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import csv
 import json
-import shutil
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -67,12 +66,15 @@ def _versions() -> dict:
 def _build(cfg: TrainConfig, hp: dict, venv):
     from stable_baselines3 import PPO, SAC
 
-    kw = {k: v for k, v in hp.items() if k not in ("net_arch", "normalize")}
+    from gripper.rl.hyperparams import NOT_SB3, POLICY_KWARGS
+
+    kw = {k: v for k, v in hp.items() if k not in POLICY_KWARGS + NOT_SB3}
+    pk = {k: hp[k] for k in POLICY_KWARGS if k in hp}
     if cfg.algo == "ppo":
-        return PPO("MlpPolicy", venv, seed=cfg.seed, device="cpu", verbose=0,
-                   policy_kwargs={"net_arch": {"pi": list(hp["net_arch"]), "vf": list(hp["net_arch"])}}, **kw)
-    return SAC("MlpPolicy", venv, seed=cfg.seed, device="cpu", verbose=0,
-               policy_kwargs={"net_arch": list(hp["net_arch"])}, **kw)
+        pk["net_arch"] = {"pi": list(hp["net_arch"]), "vf": list(hp["net_arch"])}
+        return PPO("MlpPolicy", venv, seed=cfg.seed, device="cpu", verbose=0, policy_kwargs=pk, **kw)
+    pk["net_arch"] = list(hp["net_arch"])
+    return SAC("MlpPolicy", venv, seed=cfg.seed, device="cpu", verbose=0, policy_kwargs=pk, **kw)
 
 
 def _make_venv(cfg: TrainConfig, hp: dict):
@@ -80,7 +82,7 @@ def _make_venv(cfg: TrainConfig, hp: dict):
 
     from gripper.envs.sb3 import make_sb3_vec_env
 
-    venv = make_sb3_vec_env(num_envs=cfg.n_envs, nthread=1, **cfg.env_kwargs())
+    venv: Any = make_sb3_vec_env(num_envs=cfg.n_envs, nthread=1, **cfg.env_kwargs())
     if hp["normalize"]:
         venv = VecNormalize(venv, norm_obs=True, norm_reward=cfg.algo == "ppo", gamma=hp["gamma"])
     return venv
@@ -183,8 +185,8 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
         if norm is not None:
             stats = VecNormalize.load(str(path.with_name(path.stem + "_" + NORM_FILE)), norm.venv)
             norm.obs_rms, norm.ret_rms = stats.obs_rms, stats.ret_rms
-        cls = PPO if cfg.algo == "ppo" else SAC
-        model = cls.load(str(path), env=venv, device="cpu")
+        cls: Any = PPO if cfg.algo == "ppo" else SAC
+        model: Any = cls.load(str(path), env=venv, device="cpu")
         if cfg.algo == "sac":
             model.load_replay_buffer(str(ckpt_dir / "replay_buffer.pkl"))
         rows = [r for r in _read_progress(prog_path) if r["steps"] <= done_steps]
@@ -266,8 +268,3 @@ def load_policy(run: str | Path) -> tuple[TrainConfig, Callable[[np.ndarray], np
         o = norm.normalize_obs(obs) if norm is not None else obs
         return model.predict(o, deterministic=True)[0]
     return cfg, act
-
-
-def remove_run(out: str | Path) -> None:
-    """Delete a run folder (tests)."""
-    shutil.rmtree(out, ignore_errors=True)
