@@ -88,5 +88,5 @@ def test_same_seed_same_curve_and_resume_is_bitwise(algo, tmp_path):
         train(_tiny(algo, 384).replace(hyperparams={}), tmp_path / f"{algo}_a", resume=True)
     cfg, act = load_policy(tmp_path / f"{algo}_a")
     assert cfg == _tiny(algo, 384)
-    obs = np.zeros((3, 99))
+    obs = np.zeros((3, 107))
     assert act(obs).shape == (3, 2) and np.all(np.abs(act(obs)) <= 1.0)

@@ -4,7 +4,8 @@
 - ``<!-- trial-record-schema -->``: the trial record's JSON schema;
 - ``<!-- protocol-table -->``: the grasp protocol's fields (unit, allowed, source) from their
   metadata;
-- ``<!-- sensing-table -->``: the servo sensing model's fields, likewise.
+- ``<!-- sensing-table -->``: the servo sensing model's fields, likewise;
+- ``<!-- rl-hyperparams -->``: the RL baselines' hyper-parameters (``gripper.rl.hyperparams``).
 """
 
 from __future__ import annotations
@@ -54,7 +55,17 @@ def _sensing_table() -> str:
     return "\n".join(lines)
 
 
-MARKERS = {"<!-- cli-reference -->": _cli_reference, "<!-- trial-record-schema -->": _schema,
+def _rl_hyperparams() -> str:
+    from gripper.rl.hyperparams import PPO_HYPERPARAMS, SAC_HYPERPARAMS
+
+    lines = ["| hyper-parameter | PPO | SAC |", "|---|---|---|"]
+    for k in dict.fromkeys([*PPO_HYPERPARAMS, *SAC_HYPERPARAMS]):
+        lines.append(f"| {k} | {PPO_HYPERPARAMS.get(k, '')} | {SAC_HYPERPARAMS.get(k, '')} |")
+    return "\n".join(lines)
+
+
+MARKERS = {"<!-- rl-hyperparams -->": _rl_hyperparams,
+           "<!-- cli-reference -->": _cli_reference, "<!-- trial-record-schema -->": _schema,
            "<!-- protocol-table -->": _protocol_table, "<!-- sensing-table -->": _sensing_table}
 
 

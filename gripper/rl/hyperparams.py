@@ -26,7 +26,9 @@ PPO_HYPERPARAMS: dict[str, Any] = {
     "gamma": 0.99,           # SB3 default: a 2 s horizon at the 20 ms control period
     "gae_lambda": 0.95,      # SB3 default
     "clip_range": 0.2,       # SB3 default
-    "ent_coef": 0.0,         # SB3 default
+    # an entropy bonus (SB3's default is 0): without it the servo's exploration noise fell from
+    # sigma 0.75 to 0.15-0.2 by 459k steps in two of three seeds, before they found the grasp
+    "ent_coef": 0.01,
     "vf_coef": 0.5,          # SB3 default
     "max_grad_norm": 0.5,    # SB3 default
     "net_arch": [64, 64],    # SB3 default (separate policy and value networks, tanh)
