@@ -13,7 +13,6 @@ Example:
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
@@ -115,6 +114,3 @@ class TrainConfig(Validated):
         a, b = self.to_json(), other.to_json()
         return [k for k in a if json.dumps(a[k], sort_keys=True) != json.dumps(b[k], sort_keys=True)]
 
-
-def finite(v: Any) -> bool:
-    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
