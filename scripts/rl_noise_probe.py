@@ -52,7 +52,8 @@ def main() -> None:
     ap.add_argument("--channel", choices=("all", "servo", "lift"), default="all",
                     help="which action entries get the noise (synergy: 0 servo, 1 lift)")
     args = ap.parse_args()
-    env = gym.make(ENV_ID, objects=args.object, action_mode="synergy", palm_control="position")
+    env = gym.make(ENV_ID, objects=args.object, action_mode="synergy", palm_control="position",
+                   servo_control="position")
     env.action_space.seed(0)
     policy = ScriptedGrasp(env)
     rng = np.random.default_rng(0)

@@ -99,7 +99,8 @@ VARIANTS: dict[str, dict] = {
 }
 # the variants before v4 ran the environment as it was: absolute palm set-points, the episode
 # ended on success, the reach term -1 x distance [m]
-V3 = {"palm_control": "position", "terminate_on_success": True}
+V3 = {"palm_control": "position", "servo_control": "position", "terminate_on_success": True,
+      "reward_weights": {"contact": 0.25}}
 PPO_KWARGS: dict[str, dict] = {"lowstd": {"policy_kwargs": {"log_std_init": -2.0}},
                                "v4_tuned": {"n_steps": 256, "batch_size": 256}}
 EVAL_SEED = 10_000  # evaluation episodes use seeds from here on: never a training seed

@@ -77,7 +77,7 @@ def run(objects, episodes, seed, params=None):
     out = {}
     for name in objects:
         env = gym.make("gripper:SoftGripperGrasp-v4", objects=name, xy_actions=True, params=params,
-                       palm_control="position")
+                       palm_control="position", servo_control="position")
         policy = ScriptedGrasp(env)
         wins = 0
         for ep in range(episodes):
