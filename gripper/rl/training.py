@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from gripper.core.atomic import write_atomic
 from gripper.rl.config import EVAL_SEED, TrainConfig
 from gripper.rl.hyperparams import hyperparams_for
 
@@ -122,8 +123,6 @@ def _read_progress(path: Path) -> list[dict]:
 
 
 def _write_progress(path: Path, rows: list[dict], columns: list[str]) -> None:
-    from gripper.core.atomic import write_atomic
-
     def write(tmp):
         with open(tmp, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=columns)
@@ -169,8 +168,6 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
         raise ValueError(f"--out: {out} already holds a run; give --resume to continue it or another folder")
     out.mkdir(parents=True, exist_ok=True)
     ckpt_dir.mkdir(exist_ok=True)
-    from gripper.core.atomic import write_atomic
-
     write_atomic(cfg_path, lambda tmp: Path(tmp).write_text(json.dumps(
         {"config": cfg.to_json(), "hyperparams": hp, "versions": _versions()}, indent=2) + "\n"))
 
@@ -214,11 +211,8 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
             if norm is not None:
                 norm.training = False
 
-            def act(obs):
-                o = norm.normalize_obs(obs) if norm is not None else obs
-                return model.predict(o, deterministic=True)[0]
-
-            ev = evaluate_policy(act, cfg.env_kwargs(), cfg.eval_episodes, EVAL_SEED, venv=eval_env)
+            ev = evaluate_policy(deterministic_policy(model, norm), cfg.env_kwargs(), cfg.eval_episodes,
+                                 EVAL_SEED, venv=eval_env)
             if norm is not None:
                 norm.training = True
             path = ckpt_dir / f"step_{done_steps}.zip"
@@ -263,8 +257,13 @@ def load_policy(run: str | Path) -> tuple[TrainConfig, Callable[[np.ndarray], np
         with open(run / NORM_FILE, "rb") as f:
             norm = pickle.load(f)
         norm.training = False
+    return cfg, deterministic_policy(model, norm)
 
+
+def deterministic_policy(model, norm) -> Callable[[np.ndarray], np.ndarray]:
+    """``act(obs batch)``: the model's mean action on observations normalised by ``norm``
+    (a ``VecNormalize`` with frozen statistics, or None)."""
     def act(obs):
         o = norm.normalize_obs(obs) if norm is not None else obs
         return model.predict(o, deterministic=True)[0]
-    return cfg, act
+    return act
