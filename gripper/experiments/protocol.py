@@ -25,6 +25,11 @@ from gripper.core.timesteps import PAPER_BENDING_TIMESTEP, TRIAL_TIMESTEP
 
 # Grasp policies: the object-agnostic controller, or each object's own closing command.
 POLICIES = ("controller", "per_object")
+# How the approach finds the object: the palm camera (gripper.sim.depth, gripper.experiments.approach),
+# or the object's catalogue size centred under the palm (the rule of gripper 0.11 and before).
+APPROACHES = ("sensed", "catalogue")
+# Which grasp: chosen from the depth estimate, or forced (gripper.experiments.approach).
+GRASP_CHOICES = ("auto", "envelope", "fingertip")
 # The controller's default grip set-point [N of cable tension per finger] (docs/controller.md:
 # chosen on seed 0, verified on seed 1).
 GRIP_TENSION = 5.0
@@ -53,6 +58,16 @@ class GraspProtocol(Validated):
     approach_speed: float = param(0.10, "m/s", ge=1e-3, le=1, source="assumed")
     tip_clearance: float = param(0.008, "m", ge=0, le=0.1, source="assumed: fingertips above the floor")
     palm_clearance: float = param(0.010, "m", ge=0, le=0.1, source="assumed: palm above the object's top")
+    approach: str = param("sensed", "-", choices=APPROACHES,
+                          source="sensed: from the palm camera's depth estimate; catalogue: from the object's "
+                          "size, centred under the palm (0.11.0's rule, for comparison)")
+    centre: bool = param(True, "-", source="sensed: centre the palm over the estimated footprint's centroid")
+    grasp: str = param("auto", "-", choices=GRASP_CHOICES,
+                       source="auto: fingertip below fingertip_below, else envelope (gripper.experiments.approach)")
+    fingertip_below: float = param(0.050, "m", ge=0, le=0.3,
+                                   source="objects sensed lower than this get the fingertip grasp (docs/controller.md)")
+    fingertip_clearance: float = param(0.002, "m", ge=0, le=0.05,
+                                       source="assumed: fingertip grasp, the fingers' lowest point above the support")
     close_speed: float = param(0.04, "m/s", ge=1e-3, le=1, source="cable contraction speed (spool surface)")
     policy: str = param("controller", "-", choices=POLICIES,
                         source="controller: the object-agnostic grip (gripper.experiments.controller); "

@@ -4,9 +4,10 @@ A :class:`TrialRecord` is what :func:`gripper.experiments.trial.run_trial` retur
 each line of a benchmark's ``trials.jsonl`` holds (:meth:`TrialRecord.to_dict`). It is also a
 read-only mapping of those JSON keys, so ``rec["success"]`` and ``rec.success`` are the same.
 
-Statuses: ``"ok"`` (the protocol ran to its end: the outcome fields are set) or ``"error"``
+Statuses: ``"ok"`` (the protocol ran to its end: the outcome fields are set), ``"error"``
 (the simulation went unstable: ``error`` says how, ``success`` is None and the trial counts
-neither as a success nor as a failure).
+neither as a success nor as a failure) or ``"no_object"`` (the palm camera saw nothing on the
+table: ``error`` says what it saw; neither a success nor a failure).
 
 Example:
     >>> from gripper.experiments.record import TrialRecord
@@ -24,13 +25,15 @@ from dataclasses import dataclass
 from typing import Any
 
 SCHEMA_ID = "gripper.trial_record/2"
-STATUSES = ("ok", "error")
+STATUSES = ("ok", "error", "no_object")
 FAILED_PHASES = ("lift", "hold", "shake", "damage")
 # Fields set only when the protocol ran to its end (status "ok").
 REQUIRED_OUTCOME_FIELDS = ("lift_height_m", "slip_m", "max_slip_m", "damaged", "damage_measure",
                            "damage_limit", "close_command_rad")
 # Added in record schema 2 (gripper 0.9.0): optional, so that older records still read.
 OUTCOME_FIELDS = (*REQUIRED_OUTCOME_FIELDS, "policy", "servo_at_grasp", "servo_at_hold_end")
+# Added in gripper 0.12.0 (optional): the grasp made, where the palm went, the camera's estimate.
+APPROACH_FIELDS = ("grasp", "palm_xy_m", "depth_estimate")
 # Set only by the grasp controller (policy "controller").
 CONTROLLER_FIELDS = ("grip_tension_N", "contact_time_s", "grasp_time_s")
 
@@ -56,7 +59,7 @@ class TrialRecord(Mapping[str, Any]):
         perturbation: the sampled placement (:class:`Perturbation` fields).
         config_hash: stable hash of the parameters, protocol, noise and object.
         versions: MuJoCo, gripper and NumPy versions.
-        status: ``ok`` or ``error``.
+        status: ``ok``, ``error`` or ``no_object``.
         success: held through lift, hold and shake without damage (None on error).
         failed_phase: the first phase that failed (lift, hold, shake, damage), or None.
         lift_height_m, slip_m, max_slip_m: object rise at the end, slip relative to the palm at
@@ -69,12 +72,16 @@ class TrialRecord(Mapping[str, Any]):
         servo_at_grasp, servo_at_hold_end: the servos' sensed state at the end of the close
             phase and of the hold (:class:`gripper.sim.sensing.ServoReading`: ``position_rad``,
             ``current_A``, ``load``, ``tension_N``, one entry per finger).
+        grasp: ``envelope`` or ``fingertip`` (gripper.experiments.approach).
+        palm_xy_m: where the approach put the palm over the table [m].
+        depth_estimate: the palm camera's estimate (:class:`gripper.sim.depth.ObjectEstimate`
+            as a dict; None under the catalogue approach).
         grip_tension_N: the controller's set-point [N] (controller only).
         contact_time_s: from the start of closing to the first finger's detected contact [s]
             (controller only; None if none was detected).
         grasp_time_s: from the start of closing until every finger held its set-point or the
             end of the servo's travel [s] (controller only; None if that never happened).
-        error: what went unstable (status ``error`` only).
+        error: what went unstable (status ``error``), or what the camera saw (``no_object``).
         peak_total_force_N, peak_finger_force_N, peak_cable_tension_N: peaks over the trial.
         warnings: MuJoCo warnings raised.
         sim_time_s, wall_time_s: simulated and wall-clock time.
@@ -107,6 +114,9 @@ class TrialRecord(Mapping[str, Any]):
     policy: str | None = None
     servo_at_grasp: dict[str, list[float]] | None = None
     servo_at_hold_end: dict[str, list[float]] | None = None
+    grasp: str | None = None
+    palm_xy_m: list[float] | None = None
+    depth_estimate: dict[str, float] | None = None
     grip_tension_N: float | None = None
     contact_time_s: float | None = None
     grasp_time_s: float | None = None
@@ -120,9 +130,9 @@ class TrialRecord(Mapping[str, Any]):
         out = {}
         for f in dataclasses.fields(self):
             v = getattr(self, f.name)
-            if f.name in OUTCOME_FIELDS and self.status != "ok":
+            if f.name in (*OUTCOME_FIELDS, *APPROACH_FIELDS) and self.status != "ok":
                 continue
-            if f.name in ("error", "run_config_hash", *CONTROLLER_FIELDS) and v is None:
+            if f.name in ("error", "run_config_hash", *CONTROLLER_FIELDS, *APPROACH_FIELDS) and v is None:
                 continue
             out[f.name] = v
         return out

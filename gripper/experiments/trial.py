@@ -30,6 +30,7 @@ from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
 from gripper.core.units import DEG
+from gripper.experiments.approach import ApproachPlan, fingertip_palm_z, plan_approach
 from gripper.experiments.controller import GripController, check_grip_tension
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
@@ -39,6 +40,7 @@ from gripper.objects.library import (
     get_object,
 )
 from gripper.sim.damage import damage_measure
+from gripper.sim.depth import DepthCamera, NoObjectSeen, estimate_object, palm_depth_points
 from gripper.sim.probes import ObjectProbe, PeakRecorder
 from gripper.sim.scene import build_grasp_scene
 from gripper.sim.sensing import ServoSensing, ServoSensor
@@ -59,18 +61,23 @@ def sample_placement(obj: GraspObject, noise: TrialNoise, seed: int, index: int)
 
 
 def grasp_height(p: GripperParams, obj: GraspObject, proto: GraspProtocol) -> float:
-    """Palm-face height above the floor at which the fingers close [m]."""
+    """Palm-face height above the floor at which the fingers close [m], by the catalogue rule
+    (``protocol.approach = "catalogue"``: from the object's size)."""
     return max(p.finger.length + proto.tip_clearance, obj.height + proto.palm_clearance)
 
 
 def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
               params: GripperParams | None = None, protocol: GraspProtocol | None = None,
               noise: TrialNoise | None = None, placement: Placement | None = None,
-              sensing: ServoSensing | None = None, frame_sink=None) -> TrialRecord:
+              sensing: ServoSensing | None = None, camera: DepthCamera | None = None,
+              frame_sink=None) -> TrialRecord:
     """Run one scripted grasp trial; return its record (:class:`TrialRecord`, SI units).
 
-    ``placement`` overrides the sampled perturbation; ``sensing`` the servos' sensor model (its
-    noise is drawn from a generator seeded by seed, index and object name). ``frame_sink`` (optional, see
+    ``placement`` overrides the sampled perturbation; ``sensing`` the servos' sensor model and
+    ``camera`` the palm camera's (their noise is drawn from generators seeded by seed, index and
+    object name). The grasp itself reads no field of the object: under the default
+    ``protocol.approach = "sensed"`` the palm camera finds it, and a table where the camera sees
+    nothing gives ``status = "no_object"`` (neither success nor failure). ``frame_sink`` (optional, see
     :class:`gripper.render.video.FrameRecorder`) gets ``start(model, probe)`` once and then
     ``add(phase, states, sensordata)`` after every chunk, for recording a video. An unstable simulation does not raise:
     the record gets ``status = "error"`` and the message, and counts neither as success nor
@@ -82,13 +89,14 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
     p = p.replace(sim=p.sim.replace(timestep=proto.timestep)).validate()
     noise = (noise or TrialNoise()).validate()
     sensing = (sensing or ServoSensing()).validate()
+    camera = (camera or DepthCamera()).validate()
     place = placement.validate() if placement is not None else sample_placement(obj, noise, seed, index)
     head: dict[str, Any] = {
         "trial_id": f"{obj.name}-{seed}-{index:04d}", "object": obj.name, "seed": seed, "index": index,
         "perturbation": {"x_m": place.x, "y_m": place.y, "yaw_rad": place.yaw,
                          "mass_scale": place.mass_scale, "friction_scale": place.friction_scale},
         "config_hash": stable_hash([p.to_dict(), proto.to_dict(), noise.to_dict(), obj.to_dict(),
-                                   sensing.to_dict()]),
+                                   sensing.to_dict(), camera.to_dict()]),
         "versions": versions(),
     }
     wall0 = time.perf_counter()
@@ -102,7 +110,10 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
         rec.frame_sink = frame_sink
     try:
         sensor = ServoSensor(m, p, sensing, np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 1]))
-        outcome = {"status": "ok", **run_protocol(m, d, p, obj, proto, probe, rec, sensor)}
+        eye = Eye(camera, np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 2]))
+        outcome = {"status": "ok", **run_protocol(m, d, p, obj, proto, probe, rec, sensor, eye)}
+    except NoObjectSeen as e:
+        outcome = {"status": "no_object", "success": None, "failed_phase": None, "error": str(e)}
     except SimulationUnstable as e:
         outcome = {"status": "error", "success": None, "failed_phase": None, "error": str(e)}
     return TrialRecord(
@@ -112,22 +123,40 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
         sim_time_s=float(d.time), wall_time_s=time.perf_counter() - wall0)
 
 
-def run_protocol(m, d, p, obj, proto, probe, rec, sensor: ServoSensor | None = None) -> dict:
+class Eye:
+    """The palm camera of one trial: its model and its noise generator."""
+
+    def __init__(self, camera: DepthCamera, rng: np.random.Generator):
+        self.camera, self.rng = camera, rng
+
+    def look(self, m, d, palm: int):
+        """The object estimate in the state of ``d`` (raises :class:`NoObjectSeen`)."""
+        return estimate_object(palm_depth_points(m, d, palm, self.camera, self.rng), self.camera)
+
+
+def run_protocol(m, d, p, obj, proto, probe, rec, sensor: ServoSensor | None = None, eye: Eye | None = None) -> dict:
     """Run the grasp protocol on a built scene; ``sensor`` reads the servos (default: a
-    :class:`ServoSensor` with the default sensing and a fixed generator)."""
+    :class:`ServoSensor` with the default sensing and a fixed generator), ``eye`` is the palm
+    camera (default: :class:`DepthCamera` with a fixed generator).
+
+    Raises:
+        NoObjectSeen: the sensed approach saw nothing on the table.
+    """
     stepper = ChunkStepper(m, d)
     if sensor is None:
         sensor = ServoSensor(m, p, ServoSensing(), np.random.default_rng(0))
+    if eye is None:
+        eye = Eye(DepthCamera(), np.random.default_rng(0))
     try:
-        return _protocol_phases(stepper, p, obj, proto, probe, rec, sensor)
+        return _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye)
     finally:
         stepper.close()
 
 
-def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
+def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
     m, d = stepper.m, stepper.d
     ch = proto.chunk_steps
-    z_grasp = grasp_height(p, obj, proto) - p.lift.home_height  # lift_z set-point [m]
+    home = p.lift.home_height
     travel = float(m.actuator_ctrlrange[probe.servo[0], 1])
     close_rate = proto.close_speed / p.servo.spool_radius  # rad/s of spool
     grip = None
@@ -139,26 +168,45 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
                               spool_radius=p.servo.spool_radius, kp=kp)
         servo_cmd = grip.goals
     close_cmd = min(obj.close_command * proto.close_command_scale, travel)
+    lift_y = m.actuator("lift_y").id
 
-    def ctrl(servo, z, x=None):
+    def ctrl(servo, z, x=None, y=None):
         def fn(t):
             u = np.zeros((len(t), m.nu))
             s = np.asarray(servo(t) if callable(servo) else servo, dtype=float)
             u[:, probe.servo] = s[:, None] if s.ndim == 1 else s  # one goal for all, or one per finger
             u[:, probe.lift_z] = z(t) if callable(z) else z
             if x is not None:
-                u[:, probe.lift_x] = x(t)
+                u[:, probe.lift_x] = x(t) if callable(x) else x
+            if y is not None:
+                u[:, lift_y] = y(t) if callable(y) else y
             return u
         return fn
 
     run_phase(stepper, probe, rec, ctrl(0.0, 0.0), proto.settle_s, ch, "settle")
     start = probe.object_pos(d)
+    estimate = None
+    if proto.approach == "sensed":
+        estimate = eye.look(m, d, probe.palm)  # raises NoObjectSeen
+        plan = plan_approach(estimate, p, proto)
+    else:
+        plan = ApproachPlan(grasp="envelope", x=0.0, y=0.0, palm_z=grasp_height(p, obj, proto), support_z=0.0)
+    z_grasp = plan.palm_z - home  # lift_z set-point [m]
     t_app = abs(z_grasp) / proto.approach_speed
-    run_phase(stepper, probe, rec, ctrl(0.0, lambda t: z_grasp * np.minimum(1.0, t / t_app)), t_app, ch, "approach")
+    t_lat = max(math.hypot(plan.x, plan.y) / proto.approach_speed, 1e-9)
+
+    def lateral(target):
+        return lambda t: target * np.minimum(1.0, t / t_lat)
+
+    run_phase(stepper, probe, rec, ctrl(0.0, lambda t: z_grasp * np.minimum(1.0, t / t_app),
+                                        lateral(plan.x), lateral(plan.y)),
+              max(t_app, t_lat), ch, "approach")
+    xc, yc = plan.x, plan.y
     sensed: dict[str, dict] = {}
+    z_close: Any = z_grasp
     if grip is None:
         t_close = close_cmd / close_rate
-        run_phase(stepper, probe, rec, ctrl(lambda t: close_cmd * np.minimum(1.0, t / t_close), z_grasp),
+        run_phase(stepper, probe, rec, ctrl(lambda t: close_cmd * np.minimum(1.0, t / t_close), z_grasp, xc, yc),
                   t_close + proto.close_hold_s, ch, "close")
         hold_cmd = close_cmd
     else:
@@ -168,9 +216,15 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
             grip.update(dd)
             return not math.isnan(grip.grip_time) and dd.time - grip.t0 >= grip.grip_time + proto.close_hold_s
 
-        run_phase(stepper, probe, rec, ctrl(servo_cmd, z_grasp), travel / close_rate + proto.close_hold_s, ch,
-                  "close", closed)
+        if plan.grasp == "fingertip":
+            # the palm descends as the fingers curl, keeping their lowest point at the clearance
+            def z_close(t):
+                return fingertip_palm_z(plan, p, proto, grip.goals(t).min(axis=1)) - home
+        run_phase(stepper, probe, rec, ctrl(servo_cmd, z_close, xc, yc), travel / close_rate + proto.close_hold_s,
+                  ch, "close", closed)
         hold_cmd = servo_cmd
+        if plan.grasp == "fingertip":
+            z_grasp = float(fingertip_palm_z(plan, p, proto, grip.goal.min()) - home)
     sensed["grasp"] = sensor.read(d.sensordata).to_dict()
     t_lift = proto.lift_height / proto.lift_speed
     z_top = z_grasp + proto.lift_height
@@ -184,7 +238,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
             return False
         return fn
 
-    lift = ctrl(hold_cmd, lambda t: z_grasp + proto.lift_height * np.minimum(1.0, t / t_lift))
+    lift = ctrl(hold_cmd, lambda t: z_grasp + proto.lift_height * np.minimum(1.0, t / t_lift), xc, yc)
     run_phase(stepper, probe, rec, lift, t_lift + proto.lift_settle_s, ch, "lift", on_grip)
 
     def rel(dd):
@@ -205,11 +259,11 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
         max_slip[0] = max(max_slip[0], float(np.linalg.norm(rel(dd) - rel_lift)))
         return False
 
-    run_phase(stepper, probe, rec, ctrl(hold_cmd, z_top), proto.hold_s, ch, "hold", chained(on_grip, track))
+    run_phase(stepper, probe, rec, ctrl(hold_cmd, z_top, xc, yc), proto.hold_s, ch, "hold", chained(on_grip, track))
     check("hold")
     sensed["hold"] = sensor.read(d.sensordata).to_dict()
     w = 2 * math.pi * proto.shake_frequency
-    run_phase(stepper, probe, rec, ctrl(hold_cmd, z_top, lambda t: proto.shake_amplitude * np.sin(w * t)),
+    run_phase(stepper, probe, rec, ctrl(hold_cmd, z_top, lambda t: xc + proto.shake_amplitude * np.sin(w * t), yc),
               proto.shake_s, ch, "shake", chained(on_grip, track))
     check("shake")
     lift_height = float(probe.object_pos(d)[2] - start[2])
@@ -217,10 +271,10 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
     damage = damage_measure(m, d, obj, probe, peak_strain=rec.peak_strain, peak_force=rec.peak_total)
     if proto.release:
         if grip is None:
-            opening = ctrl(lambda t: close_cmd * np.maximum(0.0, 1 - t / proto.release_s), z_top)
+            opening = ctrl(lambda t: close_cmd * np.maximum(0.0, 1 - t / proto.release_s), z_top, xc, yc)
         else:
             grip.release()
-            opening = ctrl(servo_cmd, z_top)
+            opening = ctrl(servo_cmd, z_top, xc, yc)
         run_phase(stepper, probe, rec, opening, proto.release_s, ch, "release", on_grip)
     damaged = obj.is_damaged(damage)
     failed = next((name for name in ("lift", "hold", "shake") if not phase_ok[name][0]), None)
@@ -232,6 +286,8 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor) -> dict:
         "damage_limit": obj.damage_limit,
         "close_command_rad": close_cmd if grip is None else float(grip.goal.max()),
         "policy": proto.policy, "servo_at_grasp": sensed["grasp"], "servo_at_hold_end": sensed["hold"],
+        "grasp": plan.grasp, "palm_xy_m": [xc, yc],
+        "depth_estimate": estimate.to_dict() if estimate is not None else None,
     }
     if grip is not None:
         out.update(grip_tension_N=grip.grip_tension,

@@ -1,0 +1,139 @@
+"""The sensed approach: where the palm goes and which grasp it makes, from the palm camera's
+estimate of the object (:mod:`gripper.sim.depth`) and the gripper's own kinematics only.
+
+Two grasps:
+
+- **envelope** (the benchmark's grasp since 0.1): the palm stops ``palm_clearance`` above the
+  object's sensed top, or with the straight fingertips ``tip_clearance`` above the sensed
+  support, whichever is higher, and the fingers curl around the object;
+- **fingertip** (a surface-constrained grasp, as soft hands use the table to pick up low
+  parts): the palm lowers the straight fingertips to ``fingertip_clearance`` above the sensed
+  support, and while the fingers close, it descends so that their lowest point stays at that
+  clearance: the tips sweep inwards along the support and meet the object at its base. The
+  descent follows the gripper's own free-closing kinematics (:func:`finger_reach`: how far below
+  the palm the fingers reach at each spool angle, simulated once per design), never the object.
+
+The rule (:func:`choose_grasp`): the fingertip grasp when the sensed object is lower than
+``GraspProtocol.fingertip_below``, else the envelope. The palm is centred over the sensed
+footprint's centroid (``GraspProtocol.centre``), clamped to the stage's travel.
+
+Example:
+    >>> from gripper.experiments.approach import GRASPS
+    >>> GRASPS
+    ('envelope', 'fingertip')
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from gripper.core.hashing import stable_hash
+from gripper.core.params import GripperParams
+from gripper.sim.depth import ObjectEstimate
+
+GRASPS = ("envelope", "fingertip")
+
+# Spool angles at which the free-closing reach is tabulated [rad], and the settling time at
+# each [s] (the fingers are at rest within 0.3 s at the trials' step; measured).
+REACH_ANGLES = np.linspace(0.0, 2.2, 23)
+REACH_SETTLE_S = 0.4
+_REACH: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+
+
+@dataclass(frozen=True)
+class ApproachPlan:
+    """Where the approach takes the palm (world frame, [m]) and which grasp follows.
+
+    Attributes:
+        grasp: ``envelope`` or ``fingertip``.
+        x, y: palm position over the table.
+        palm_z: palm-face height at the end of the approach.
+        support_z: the support surface's height the plan was made for.
+    """
+
+    grasp: str
+    x: float
+    y: float
+    palm_z: float
+    support_z: float
+
+
+def choose_grasp(est: ObjectEstimate, proto) -> str:
+    """``fingertip`` for an object sensed lower than ``proto.fingertip_below``, else
+    ``envelope``; ``proto.grasp`` other than ``auto`` forces one."""
+    if proto.grasp != "auto":
+        return proto.grasp
+    return "fingertip" if est.height < proto.fingertip_below else "envelope"
+
+
+def plan_approach(est: ObjectEstimate, p: GripperParams, proto) -> ApproachPlan:
+    """The plan of the module docstring for the estimate ``est``."""
+    grasp = choose_grasp(est, proto)
+    travel = p.lift.xy_travel
+    x, y = (est.x, est.y) if proto.centre else (0.0, 0.0)
+    x, y = float(np.clip(x, -travel, travel)), float(np.clip(y, -travel, travel))
+    if grasp == "fingertip":
+        z = est.support_z + p.finger.length + proto.fingertip_clearance
+    else:
+        z = est.support_z + max(p.finger.length + proto.tip_clearance, est.height + proto.palm_clearance)
+    return ApproachPlan(grasp=grasp, x=x, y=y, palm_z=float(z), support_z=est.support_z)
+
+
+def finger_reach(p: GripperParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The fingers' free-closing reach: spool angles [rad], how far below the palm face the
+    lowest point of any finger is [m], and how close to the palm axis any finger comes [m].
+
+    Simulated once per design and process (no object; each angle held until at rest, the
+    grasp trials' integrator and step); the lowest point is taken over the element meshes'
+    vertices.
+    """
+    key = stable_hash(p.to_dict())
+    if key not in _REACH:
+        _REACH[key] = _simulate_reach(p)
+    return _REACH[key]
+
+
+def _simulate_reach(p: GripperParams):
+    from gripper.model.names import finger_name
+    from gripper.sim.scene import grasp_scene_spec
+
+    spec = grasp_scene_spec(p)
+    m = spec.compile()
+    d = mujoco.MjData(m)
+    servo = [m.actuator(f"{finger_name(k)}_servo").id for k in range(p.layout.n_fingers)]
+    palm = m.body("palm").id
+    geoms = [g for g in range(m.ngeom) if m.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH
+             and m.geom_contype[g] and m.body(m.geom_bodyid[g]).name.startswith("f")]
+    mujoco.mj_forward(m, d)
+    steps = int(round(REACH_SETTLE_S / m.opt.timestep))
+    low, radial = [], []
+    for a in REACH_ANGLES:
+        d.ctrl[servo] = a
+        for _ in range(steps):
+            mujoco.mj_step(m, d)
+        zs, rs = [], []
+        for g in geoms:
+            mid = m.geom_dataid[g]
+            adr, n = m.mesh_vertadr[mid], m.mesh_vertnum[mid]
+            v = m.mesh_vert[adr:adr + n] @ d.geom_xmat[g].reshape(3, 3).T + d.geom_xpos[g]
+            zs.append(v[:, 2].min())
+            rs.append(np.hypot(v[:, 0] - d.xpos[palm][0], v[:, 1] - d.xpos[palm][1]).min())
+        low.append(d.xpos[palm][2] - min(zs))
+        radial.append(min(rs))
+    return REACH_ANGLES.copy(), np.asarray(low), np.asarray(radial)
+
+
+def fingertip_palm_z(plan: ApproachPlan, p: GripperParams, proto, spool: np.ndarray) -> np.ndarray:
+    """Palm-face height [m] that keeps the fingers' lowest point ``fingertip_clearance`` above
+    the support at spool angles ``spool`` [rad] (the deepest-reaching finger counts)."""
+    angles, low, _ = finger_reach(p)
+    reach = np.interp(spool, angles, low)
+    return plan.support_z + proto.fingertip_clearance + reach
+
+
+def travel_time(dx: float, speed: float) -> float:
+    return abs(dx) / speed if speed > 0 else math.inf
