@@ -11,11 +11,16 @@ Two grasps:
   support, and while the fingers close, it descends so that their lowest point stays at that
   clearance: the tips sweep inwards along the support and meet the object at its base. The
   descent follows the gripper's own free-closing kinematics (:func:`finger_reach`: how far below
-  the palm the fingers reach at each spool angle, simulated once per design), never the object.
+  the palm the fingers reach at each spool angle, simulated once per design), never the object,
+  and it stops ``palm_clearance`` above the sensed top.
 
-The rule (:func:`choose_grasp`): the fingertip grasp when the sensed object is lower than
-``GraspProtocol.fingertip_below``, else the envelope. The palm is centred over the sensed
-footprint's centroid (``GraspProtocol.centre``), clamped to the stage's travel.
+The rule (:func:`choose_grasp`), from geometry: the fingertip grasp when the straight
+fingertips can reach the support beside the object, that is when the sensed top is at least
+``palm_clearance`` below the palm at the fingertip grasp's start, and the sensed footprint's
+radius (its farthest point from its centroid) is inside the open fingers' grasping faces
+(``layout.palm_radius``); otherwise
+(a tall object, or one the tips would land on) the envelope. The palm is centred over the
+sensed footprint's centroid (``GraspProtocol.centre``), clamped to the stage's travel.
 
 Example:
     >>> from gripper.experiments.approach import GRASPS
@@ -53,6 +58,7 @@ class ApproachPlan:
         x, y: palm position over the table.
         palm_z: palm-face height at the end of the approach.
         support_z: the support surface's height the plan was made for.
+        floor_z: the lowest the palm face may go (``palm_clearance`` above the sensed top).
     """
 
     grasp: str
@@ -60,19 +66,21 @@ class ApproachPlan:
     y: float
     palm_z: float
     support_z: float
+    floor_z: float = -math.inf
 
 
-def choose_grasp(est: ObjectEstimate, proto) -> str:
-    """``fingertip`` for an object sensed lower than ``proto.fingertip_below``, else
-    ``envelope``; ``proto.grasp`` other than ``auto`` forces one."""
+def choose_grasp(est: ObjectEstimate, p: GripperParams, proto) -> str:
+    """The rule of the module docstring; ``proto.grasp`` other than ``auto`` forces one."""
     if proto.grasp != "auto":
         return proto.grasp
-    return "fingertip" if est.height < proto.fingertip_below else "envelope"
+    clears_top = est.height + proto.palm_clearance <= p.finger.length + proto.fingertip_clearance
+    fits = est.radius < p.layout.palm_radius
+    return "fingertip" if clears_top and fits else "envelope"
 
 
 def plan_approach(est: ObjectEstimate, p: GripperParams, proto) -> ApproachPlan:
     """The plan of the module docstring for the estimate ``est``."""
-    grasp = choose_grasp(est, proto)
+    grasp = choose_grasp(est, p, proto)
     travel = p.lift.xy_travel
     x, y = (est.x, est.y) if proto.centre else (0.0, 0.0)
     x, y = float(np.clip(x, -travel, travel)), float(np.clip(y, -travel, travel))
@@ -80,7 +88,8 @@ def plan_approach(est: ObjectEstimate, p: GripperParams, proto) -> ApproachPlan:
         z = est.support_z + p.finger.length + proto.fingertip_clearance
     else:
         z = est.support_z + max(p.finger.length + proto.tip_clearance, est.height + proto.palm_clearance)
-    return ApproachPlan(grasp=grasp, x=x, y=y, palm_z=float(z), support_z=est.support_z)
+    return ApproachPlan(grasp=grasp, x=x, y=y, palm_z=float(z), support_z=est.support_z,
+                        floor_z=est.top_z + proto.palm_clearance)
 
 
 def finger_reach(p: GripperParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -129,11 +138,9 @@ def _simulate_reach(p: GripperParams):
 
 def fingertip_palm_z(plan: ApproachPlan, p: GripperParams, proto, spool: np.ndarray) -> np.ndarray:
     """Palm-face height [m] that keeps the fingers' lowest point ``fingertip_clearance`` above
-    the support at spool angles ``spool`` [rad] (the deepest-reaching finger counts)."""
+    the support at spool angles ``spool`` [rad] (the deepest-reaching finger counts), never
+    below ``plan.floor_z``."""
     angles, low, _ = finger_reach(p)
     reach = np.interp(spool, angles, low)
-    return plan.support_z + proto.fingertip_clearance + reach
+    return np.maximum(plan.support_z + proto.fingertip_clearance + reach, plan.floor_z)
 
-
-def travel_time(dx: float, speed: float) -> float:
-    return abs(dx) / speed if speed > 0 else math.inf

@@ -63,9 +63,8 @@ class GraspProtocol(Validated):
                           "size, centred under the palm (0.11.0's rule, for comparison)")
     centre: bool = param(True, "-", source="sensed: centre the palm over the estimated footprint's centroid")
     grasp: str = param("auto", "-", choices=GRASP_CHOICES,
-                       source="auto: fingertip below fingertip_below, else envelope (gripper.experiments.approach)")
-    fingertip_below: float = param(0.050, "m", ge=0, le=0.3,
-                                   source="objects sensed lower than this get the fingertip grasp (docs/controller.md)")
+                       source="auto: the fingertip grasp where the tips reach the support beside the "
+                       "object, else the envelope (gripper.experiments.approach)")
     fingertip_clearance: float = param(0.002, "m", ge=0, le=0.05,
                                        source="assumed: fingertip grasp, the fingers' lowest point above the support")
     close_speed: float = param(0.04, "m/s", ge=1e-3, le=1, source="cable contraction speed (spool surface)")

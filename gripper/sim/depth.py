@@ -27,8 +27,9 @@ The estimate (:func:`estimate_object`) needs no knowledge of the object:
 - the **top** is the 98th percentile of the object points' heights (robust to single noisy
   pixels);
 - the **footprint** is the convex hull of the object points seen from above; its area
-  centroid is the object's **centroid**, and its smallest enclosing rectangle (rotating
-  calipers over the hull's edges) gives the footprint's width, length and yaw.
+  centroid is the object's **centroid**, its farthest vertex from there the footprint's
+  **radius**, and its smallest enclosing rectangle (rotating calipers over the hull's edges)
+  gives the footprint's width, length and yaw.
 
 Example:
     >>> from gripper.sim.depth import DepthCamera
@@ -108,6 +109,8 @@ class ObjectEstimate:
         x, y: centroid of its footprint seen from above [m].
         length, width: sides of the footprint's smallest enclosing rectangle, length >= width [m].
         yaw: direction of the rectangle's long side [rad].
+        radius: farthest the footprint reaches from its centroid [m] (a disc's radius, a
+            square's half-diagonal).
         pixels: object pixels seen.
     """
 
@@ -118,6 +121,7 @@ class ObjectEstimate:
     length: float
     width: float
     yaw: float
+    radius: float
     pixels: int
 
     @property
@@ -127,7 +131,7 @@ class ObjectEstimate:
     def to_dict(self) -> dict[str, float]:
         return {"support_z_m": self.support_z, "height_m": self.height, "x_m": self.x, "y_m": self.y,
                 "length_m": self.length, "width_m": self.width, "yaw_rad": self.yaw,
-                "pixels": float(self.pixels)}
+                "radius_m": self.radius, "pixels": float(self.pixels)}
 
 
 def depth_points(m: mujoco.MjModel, d: mujoco.MjData, cam: DepthCamera, origin: np.ndarray,
@@ -200,10 +204,11 @@ def estimate_object(points: np.ndarray, cam: DepthCamera) -> ObjectEstimate:
         c = xy.mean(axis=0)
         span = np.ptp(xy, axis=0)
         return ObjectEstimate(support, top, float(c[0]), float(c[1]), float(span.max()), float(span.min()),
-                              0.0, len(obj))
+                              0.0, float(np.hypot(*(xy - c).T).max()), len(obj))
     cx, cy, _ = _polygon_centroid(hull)
     length, width, yaw = _min_area_rectangle(hull)
-    return ObjectEstimate(support, top, cx, cy, length, width, yaw, len(obj))
+    radius = float(np.hypot(hull[:, 0] - cx, hull[:, 1] - cy).max())
+    return ObjectEstimate(support, top, cx, cy, length, width, yaw, radius, len(obj))
 
 
 def _polygon_centroid(poly: np.ndarray) -> tuple[float, float, float]:
