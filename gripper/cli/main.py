@@ -21,9 +21,11 @@ from gripper.bench.execution import check_scheduler
 from gripper.core.atomic import check_output_dir, check_output_file
 from gripper.core.params import GripperParams, parameter_help
 from gripper.experiments.protocol import (
+    APPROACHES,
     CRUSH_DEPTH,
     CRUSH_HOLD_S,
     CRUSH_SPEED,
+    GRASP_CHOICES,
     POLICIES,
     PULL_MAX,
     PULL_RATE,
@@ -169,7 +171,8 @@ def _protocol_and_noise(args):
     if args.noise < 0:
         raise ValueError(f"--noise: must be >= 0 m, got {args.noise}")
     proto = GraspProtocol(close_command_scale=args.close_scale, release=args.release, policy=args.policy,
-                          grip_tension=args.grip_tension).validate()
+                          grip_tension=args.grip_tension, approach=args.approach, grasp=args.grasp,
+                          centre=not args.no_centre).validate()
     noise = TrialNoise(xy=args.noise, mass_frac=args.mass_noise, friction_frac=args.friction_noise).validate()
     return proto, noise
 
@@ -449,6 +452,14 @@ def build_parser() -> argparse.ArgumentParser:
                        help="per_object: multiplier on each object's closing command (default %(default)s; "
                             ">1 squeezes harder)")
         p.add_argument("--release", action="store_true", help="open the fingers at the end of each trial")
+        p.add_argument("--approach", choices=APPROACHES, default=proto.approach,
+                       help="sensed: the palm camera finds the object; catalogue: the object's size, centred "
+                            "under the palm (0.11.0's rule) (default %(default)s)")
+        p.add_argument("--grasp", choices=GRASP_CHOICES, default=proto.grasp,
+                       help="auto: the fingertip grasp where the tips reach the table beside the object, else "
+                            "the envelope; or force one (default %(default)s)")
+        p.add_argument("--no-centre", action="store_true",
+                       help="sensed approach: do not centre the palm over the sensed object")
         return p
 
     def with_runner(p):
