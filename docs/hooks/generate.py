@@ -5,6 +5,7 @@
 - ``<!-- protocol-table -->``: the grasp protocol's fields (unit, allowed, source) from their
   metadata;
 - ``<!-- sensing-table -->``: the servo sensing model's fields, likewise;
+- ``<!-- depth-camera-table -->``: the palm depth camera's fields, likewise;
 - ``<!-- rl-hyperparams -->``: the RL baselines' hyper-parameters (``gripper.rl.hyperparams``).
 """
 
@@ -55,6 +56,17 @@ def _sensing_table() -> str:
     return "\n".join(lines)
 
 
+def _depth_camera_table() -> str:
+    from gripper.core.fields import field_specs
+    from gripper.sim.depth import DepthCamera
+
+    lines = ["| field | default | unit | allowed | source |", "|---|---|---|---|---|"]
+    for name, spec in field_specs(DepthCamera).items():
+        lines.append(f"| depth.{name} | {getattr(DepthCamera(), name):.4g} | {spec.unit} | {spec.allowed()} "
+                     f"| {spec.source} |")
+    return "\n".join(lines)
+
+
 def _rl_hyperparams() -> str:
     from gripper.rl.hyperparams import PPO_HYPERPARAMS, SAC_HYPERPARAMS
 
@@ -66,7 +78,8 @@ def _rl_hyperparams() -> str:
 
 MARKERS = {"<!-- rl-hyperparams -->": _rl_hyperparams,
            "<!-- cli-reference -->": _cli_reference, "<!-- trial-record-schema -->": _schema,
-           "<!-- protocol-table -->": _protocol_table, "<!-- sensing-table -->": _sensing_table}
+           "<!-- protocol-table -->": _protocol_table, "<!-- sensing-table -->": _sensing_table,
+           "<!-- depth-camera-table -->": _depth_camera_table}
 
 
 def on_page_markdown(markdown: str, **kwargs) -> str:
