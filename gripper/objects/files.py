@@ -4,7 +4,7 @@ Format (``docs/objects.md`` has a worked example)::
 
     [object]
     name = "bracket"               # how records name it
-    kind = "mesh"                  # rigid_box, rigid_cylinder, mesh, balloon, paper_box, bag
+    kind = "mesh"                  # rigid_box, rigid_cylinder, mesh, balloon, paper_box, bag, zipper_bag
     mesh = "bracket.stl"           # kind mesh: STL/OBJ/PLY in metres, relative to this file
     size = [0.02, 0.02, 0.03]      # primitives and deformables: half-extents [m]
     mass = 0.060                   # [kg]; or density = 620.0 [kg/m³] (rigid kinds)
@@ -21,6 +21,11 @@ Format (``docs/objects.md`` has a worked example)::
     youngs_modulus = 3.0e9         # [Pa]
     thickness = 2.0e-4             # [m], shells and films
     yield_strain = 0.005           # [-], paper_box
+
+    [contents]                     # zipper_bag: its loose items, in one layer on its floor
+    count = 6
+    size = [0.0159, 0.0079, 0.0048] # one item's half-extents [m]
+    mass = 0.0023                  # one item's mass [kg]; object.mass is the film's and theirs
 
     [reasons]                      # free text per number: where it comes from
     mass = "weighed"
@@ -59,11 +64,13 @@ SECTIONS: dict[str, tuple[str, ...] | None] = {
                "close_command", "mesh_points"),
     "damage": ("criterion", "limit"),
     "material": MATERIAL_KEYS,
+    "contents": ("count", "size", "mass"),
     "reasons": None,  # any key: free text
 }
 # The criterion a deformable kind is damaged by (the project models one per kind).
-OWN_CRITERION = {"balloon": "strain", "bag": "strain", "paper_box": "dent"}
+OWN_CRITERION = {"balloon": "strain", "bag": "strain", "zipper_bag": "strain", "paper_box": "dent"}
 MATERIAL_NEEDS = {"balloon": ("youngs_modulus",), "bag": ("youngs_modulus", "thickness"),
+                  "zipper_bag": ("youngs_modulus", "thickness"),
                   "paper_box": ("youngs_modulus", "thickness", "yield_strain")}
 
 
@@ -180,6 +187,17 @@ def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspO
     if kind not in MATERIAL_NEEDS and mat:
         raise fail("material", f"a {kind} is rigid: it takes no material table")
     material = {k: get(mat, "material", k, "number", default=0.0) for k in MATERIAL_KEYS}
+    cont = data.get("contents", {})
+    contents: dict[str, Any] = {}
+    if kind == "zipper_bag":
+        count = cont.get("count")
+        if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 64:
+            raise fail("contents.count", f"must be a whole number from 1 to 64, got {count!r}")
+        contents = {"contents_count": count,
+                    "contents_size": get(cont, "contents", "size", "size", required=True),
+                    "contents_mass": get(cont, "contents", "mass", "number", required=True)}
+    elif cont:
+        raise fail("contents", f"only a zipper_bag holds loose contents, this is a {kind}")
 
     if kind == "mesh":
         mesh_name = get(obj, "object", "mesh", "text", required=True)
@@ -202,6 +220,7 @@ def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspO
     try:
         return GraspObject(name=name, kind=kind, size=size, mass=mass, friction=friction,
                            yaw_symmetric=yaw_symmetric, close_command=close, damage=criterion,
-                           damage_limit=limit, mesh_points=points, reasons=reasons, **material).validate()
+                           damage_limit=limit, mesh_points=points, reasons=reasons, **material,
+                           **contents).validate()
     except ValueError as e:
         raise ValueError(f"{where}: {e}") from None

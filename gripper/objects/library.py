@@ -44,13 +44,14 @@ DROP_GAP = 0.001
 
 # Damage criteria: what is measured, its unit, and the kinds it applies to.
 DAMAGE_CRITERIA = {
-    "strain": ("peak edge strain of the membrane or film [-] (burst or tear above the limit)", ("balloon", "bag")),
+    "strain": ("peak edge strain of the membrane or film [-] (burst or tear above the limit)",
+               ("balloon", "bag", "zipper_bag")),
     "dent": ("permanent dent depth after spring-back [m]", ("paper_box",)),
     "contact_force": ("peak total contact force [N]", ("rigid_box", "rigid_cylinder", "rigid_sphere", "mesh")),
     "none": ("not damaged by grasping", ("rigid_box", "rigid_cylinder", "rigid_sphere", "mesh")),
 }
 RIGID_KINDS = ("rigid_box", "rigid_cylinder", "rigid_sphere", "mesh")
-KINDS = (*RIGID_KINDS, "balloon", "paper_box", "bag")
+KINDS = (*RIGID_KINDS, "balloon", "paper_box", "bag", "zipper_bag")
 # The deformable kinds' default mesh resolution (points along x, y, z; GraspObject.mesh_points),
 # where each one's convergence check put it (docs/performance.md, "Mesh resolution"):
 # - balloon: 5 surface points per axis (99 vertices) on a 2 x 2 x 2 trilinear cage (81 dofs);
@@ -58,7 +59,7 @@ KINDS = (*RIGID_KINDS, "balloon", "paper_box", "bag")
 #   its cost and keep the benchmark's outcomes, but its faces are 23-53 % stiffer under a finger;
 # - bag: 4 x 4 x 5 points (64 vertices: film elements of about 17 mm), half the cost of 5 x 5 x 6
 #   with the outcome and the strain inside the 4 / 5 / 6-point spread.
-DEFAULT_MESH_POINTS = {"balloon": (5, 5, 5), "paper_box": (5, 5, 6), "bag": (4, 4, 5)}
+DEFAULT_MESH_POINTS = {"balloon": (5, 5, 5), "paper_box": (5, 5, 6), "bag": (4, 4, 5), "zipper_bag": (6, 6, 3)}
 # Allowed resolutions: flexcomp needs 3 points an axis for a closed surface; 12 is a 10-fold cost.
 MESH_POINTS_RANGE = (3, 12)
 # The open fingers' grasping faces stand this far from the palm axis in the default design
@@ -98,6 +99,9 @@ class GraspObject(Validated):
             ``count``; the balloon's surface points per axis); (0, 0, 0) for the rigid kinds.
             The deformables default to :data:`DEFAULT_MESH_POINTS` (their convergence check is
             in ``docs/performance.md``).
+        contents_count, contents_size, contents_mass: a zipper bag's loose contents: how many
+            rigid items, each one's half-extents [m] and mass [kg] (``mass`` is the film's and
+            the items' together).
         reasons: (field, reason) pairs: where the numbers come from (not part of the physics,
             so not part of :meth:`to_dict`).
     """
@@ -118,6 +122,9 @@ class GraspObject(Validated):
     footprint_radius: float = 0.0
     oversize: bool = False
     mesh_points: tuple[int, int, int] = (0, 0, 0)
+    contents_count: int = 0
+    contents_size: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    contents_mass: float = 0.0
     reasons: tuple[tuple[str, str], ...] = dataclasses.field(default=(), compare=False)
 
     @property
@@ -132,13 +139,13 @@ class GraspObject(Validated):
         yaw is sampled), or the round objects' radius."""
         if self.kind == "mesh" and self.footprint_radius > 0:
             return self.footprint_radius
-        if self.kind in ("rigid_box", "paper_box", "mesh") and not self.yaw_symmetric:
+        if self.kind in ("rigid_box", "paper_box", "mesh", "zipper_bag") and not self.yaw_symmetric:
             return math.hypot(self.size[0], self.size[1])
         return max(self.size[0], self.size[1])
 
     @property
     def is_flex(self) -> bool:
-        return self.kind in ("balloon", "paper_box", "bag")
+        return self.kind in ("balloon", "paper_box", "bag", "zipper_bag")
 
     @property
     def damage_measure(self) -> str:
@@ -177,6 +184,10 @@ class GraspObject(Validated):
         if not self.is_flex and pts != (0, 0, 0):
             raise ValueError(f"{where}.mesh_points: a {self.kind} is rigid and has no mesh resolution, "
                              f"got {list(pts)}")
+        if self.kind == "zipper_bag":
+            zipper_bag_layout(self)  # raises if the contents do not fit or outweigh the bag
+        elif self.contents_count:
+            raise ValueError(f"{where}.contents: only a zipper_bag holds loose contents, this is a {self.kind}")
         if self.kind == "rigid_sphere" and not (self.size[0] == self.size[1] == self.size[2]):
             raise ValueError(f"{where}.size: a sphere's three half-extents are its radius, got {list(self.size)}")
         if self.half_width > APERTURE_RADIUS and not self.oversize:
@@ -188,8 +199,10 @@ class GraspObject(Validated):
         return self
 
     def to_dict(self) -> dict:
-        """The physics of the object (everything but :attr:`reasons`), JSON-ready."""
-        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.name != "reasons"}
+        """The physics of the object (everything but :attr:`reasons`; the contents only where
+        there are some), JSON-ready."""
+        skip = {"reasons"} | ({"contents_count", "contents_size", "contents_mass"} if not self.contents_count else set())
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.name not in skip}
 
 
 # --- the default library -------------------------------------------------------------------
@@ -205,19 +218,23 @@ BAG_FILM_MASS = 0.003  # kg
 BAG_CONTENTS_HALF = (0.018, 0.018, 0.022)  # m
 
 DEFAULT_OBJECTS = ("balloon", "block", "cylinder", "paper_box", "bag")
+# Shipped object files beyond the benchmark's five, by name: the pack-in-a-bag of 0.11.0 and
+# before (a hard case, docs/limitations.md).
+EXTRA_OBJECTS = ("bag_pack",)
 
 
 def _library() -> dict[str, GraspObject]:
     from gripper.objects.files import load_object_file
 
-    return {name: load_object_file(OBJECTS_DIR / f"{name}.toml") for name in DEFAULT_OBJECTS}
+    return {name: load_object_file(OBJECTS_DIR / f"{name}.toml") for name in (*DEFAULT_OBJECTS, *EXTRA_OBJECTS)}
 
 
 LIBRARY: dict[str, GraspObject] = {}  # filled on first use (the object files are package data)
 
 
 def library() -> dict[str, GraspObject]:
-    """The built-in objects, read once from their object files in ``gripper/data/objects``."""
+    """The built-in objects (the default five and :data:`EXTRA_OBJECTS`), read once from their
+    object files in ``gripper/data/objects``."""
     if not LIBRARY:
         LIBRARY.update(_library())
     return LIBRARY
@@ -385,6 +402,8 @@ def add_object(spec: mujoco.MjSpec, obj: GraspObject, place: Placement = Placeme
         _add_paper_box(spec, obj, pos, quat, mass, friction)
     elif obj.kind == "bag":
         _add_bag(spec, obj, pos, quat, mass, friction, place.mass_scale)
+    elif obj.kind == "zipper_bag":
+        _add_zipper_bag(spec, obj, pos, place.yaw, friction, place.mass_scale)
     else:  # pragma: no cover - validate() and the library keep kinds closed
         raise ValueError(f"object.{obj.name}.kind: unknown kind {obj.kind!r}")
 
@@ -499,6 +518,47 @@ def _add_paper_box(spec, obj, pos, quat, mass, friction) -> None:
     _flex_contact(flex, friction)
 
 
+# A zipper bag's contents lie in one layer on the bag's floor, in a grid, this far from the film
+# and from each other [m] (the film's contact radius plus a margin).
+ZIPPER_GAP = 0.002
+
+
+def zipper_bag_layout(obj: GraspObject) -> list[tuple[float, float, float]]:
+    """Centres of a zipper bag's items in the bag's frame [m]: one layer on its floor, a grid
+    along the bag's length (x) and width (y), each item's long side along x.
+
+    Raises:
+        ValueError: no contents, items that do not fit in one layer, or contents heavier than
+            the bag's total mass.
+    """
+    where = f"object.{obj.name}.contents"
+    n = obj.contents_count
+    if not (isinstance(n, int) and not isinstance(n, bool) and 1 <= n <= 64):
+        raise ValueError(f"{where}.count: a zipper_bag holds 1 to 64 items, got {n!r}")
+    hs = obj.contents_size
+    if not (len(hs) == 3 and all(isinstance(v, int | float) and math.isfinite(v) and v > 0 for v in hs)):
+        raise ValueError(f"{where}.size: three half-extents > 0 m, got {list(hs)!r}")
+    m = obj.contents_mass
+    if not (isinstance(m, int | float) and math.isfinite(m) and 0 < m and n * m < obj.mass):
+        raise ValueError(f"{where}.mass: each item > 0 kg and all {n} lighter than the bag's total "
+                         f"{obj.mass:g} kg (film included), got {m!r}")
+    bx, by, bz = obj.size
+    pitch_x, pitch_y = 2 * hs[0] + ZIPPER_GAP, 2 * hs[1] + ZIPPER_GAP
+    nx = int((2 * bx - ZIPPER_GAP) // pitch_x)
+    ny = int((2 * by - ZIPPER_GAP) // pitch_y)
+    if nx * ny < n or 2 * hs[2] + 2 * ZIPPER_GAP > 2 * bz:
+        raise ValueError(f"{where}: {n} items of {2e3 * hs[0]:.1f} x {2e3 * hs[1]:.1f} x {2e3 * hs[2]:.1f} mm "
+                         f"do not lie in one layer inside {2e3 * bx:.0f} x {2e3 * by:.0f} x {2e3 * bz:.0f} mm")
+    rows = math.ceil(n / nx)
+    out = []
+    for k in range(n):
+        i, j = k % nx, k // nx
+        cols = min(nx, n - j * nx)
+        out.append(((i - 0.5 * (cols - 1)) * pitch_x, (j - 0.5 * (rows - 1)) * pitch_y,
+                    -bz + ZIPPER_GAP + hs[2]))
+    return out
+
+
 BAG_DAMPING = 0.002  # s, Rayleigh damping of the film: LDPE is lossy (tan δ ≈ 0.1)
 PE_POISSON = 0.4  # LDPE 0.35-0.45
 
@@ -532,3 +592,38 @@ def _add_bag(spec, obj, pos, quat, mass, friction, mass_scale) -> None:
     # and a film vertex popping back over a pack edge read as a 64 % "tear".
     g.solref = list(FLEX_CONTACT_SOLREF)
     g.solimp = list(FLEX_CONTACT_SOLIMP)
+
+
+def _add_zipper_bag(spec, obj, pos, yaw, friction, mass_scale) -> None:
+    """A closed zipper bag: a film shell (a box surface of the filled bag's size, as the paper
+    box's, with the film's modulus and gauge) holding loose rigid items in one layer."""
+    import tempfile
+
+    film_mass = (obj.mass - obj.contents_count * obj.contents_mass) * mass_scale
+    quat = _yaw_quat(yaw)
+    mesh = box_shell(obj.size, obj.mesh_points)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = str(Path(tmp) / "zipper_bag_film.obj")
+        mesh.export(path)
+        flex = spec.worldbody.make_flex(
+            OBJECT_BODY, type="mesh", file=path, dim=2, dof="full", radius=0.0007, mass=film_mass,
+            inertiabox=0.002, pos=pos, quat=quat, elastic2d=3)
+    flex.young = obj.youngs_modulus
+    flex.poisson = PE_POISSON
+    flex.thickness = obj.thickness
+    flex.damping = BAG_DAMPING
+    flex.rgba = [0.75, 0.85, 0.95, 0.5]
+    _flex_contact(flex, friction)
+    c, s_ = math.cos(yaw), math.sin(yaw)
+    for k, (x, y, z) in enumerate(zipper_bag_layout(obj)):
+        body = spec.worldbody.add_body(name=f"{CONTENTS_BODY}_{k}",
+                                       pos=[pos[0] + c * x - s_ * y, pos[1] + s_ * x + c * y, pos[2] + z],
+                                       quat=quat)
+        body.add_freejoint(name=f"{CONTENTS_BODY}_{k}_free")
+        g = body.add_geom(name=f"{CONTENTS_BODY}_{k}_geom", type=mujoco.mjtGeom.mjGEOM_BOX,
+                          size=list(obj.contents_size), rgba=[0.85, 0.2, 0.15, 1.0])
+        g.mass = obj.contents_mass * mass_scale
+        g.friction = friction
+        g.priority = 1
+        g.solref = list(FLEX_CONTACT_SOLREF)  # as the bag's pack: as stiff against the film as the fingers
+        g.solimp = list(FLEX_CONTACT_SOLIMP)

@@ -16,7 +16,7 @@ from gripper.objects.library import (
 )
 
 # Objects whose damage measure is the peak edge strain of their flex (burst, tear).
-STRAIN_DAMAGE_KINDS = ("balloon", "bag")
+STRAIN_DAMAGE_KINDS = ("balloon", "bag", "zipper_bag")
 
 
 def geom_normal_force(m: mujoco.MjModel, d: mujoco.MjData, geom: int) -> float:
@@ -53,7 +53,8 @@ class ObjectProbe:
                     self.geom_finger[g] = k
         self.object_geom = np.zeros(m.ngeom + 1, dtype=bool)
         for g in range(m.ngeom):
-            if m.body(m.geom_bodyid[g]).name in (OBJECT_BODY, CONTENTS_BODY):
+            name = m.body(m.geom_bodyid[g]).name
+            if name == OBJECT_BODY or name.startswith(CONTENTS_BODY):
                 self.object_geom[g] = True
         self.tension_adr = np.array([m.sensor_adr[m.sensor(f"{finger_name(k)}_cable_tension").id]
                                      for k in range(self.n_fingers)])
