@@ -85,7 +85,7 @@ def test_empty_table_is_no_object_seen():
 
 def test_rays_see_flexes():
     """The bag's film is a flex (no geom): the rays must stop on it, not on the pack inside."""
-    obj = get_object("bag")
+    obj = get_object("bag_pack")
     cam = DepthCamera()
     _, _, pts = _points(obj, Placement(), cam)
     est = estimate_object(pts, cam)

@@ -50,7 +50,7 @@ limit = "a thin-walled print cracks at about 30 N"
 
 
 def test_the_built_in_objects_are_object_files():
-    for name in ("balloon", "block", "cylinder", "paper_box", "bag"):
+    for name in ("balloon", "block", "cylinder", "paper_box", "bag", "bag_pack"):
         assert load_object_file(OBJECTS_DIR / f"{name}.toml") == get_object(name)
     assert dict(get_object("block").reasons)["friction"].startswith("silicone on PLA")
 
@@ -132,6 +132,11 @@ def test_a_round_mesh_is_sized_by_its_footprint_not_its_bounding_box(tmp_path):
         mesh_object(tmp_path / "wide.stl")
 
 
+# A zipper bag's object table and material, without its contents.
+_ZIP = ("[object]\nname='x'\nkind='zipper_bag'\nsize=[0.024,0.0113,0.008]\nmass=0.00253\nfriction=0.6\n"
+        "close_command=1.5\n[material]\nyoungs_modulus=2.5e8\nthickness=4.25e-5\n[damage]\nlimit=0.05\n")
+
+
 @pytest.mark.parametrize(("text", "message"), [
     ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02,0.03]\nmass=0.1\n", "object.friction: missing"),
     ("[object]\nname='x'\nkind='jelly'\n", "object.kind: must be one of"),
@@ -155,6 +160,13 @@ def test_a_round_mesh_is_sized_by_its_footprint_not_its_bounding_box(tmp_path):
     ("[object]\nname='x'\nkind='bag'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\nclose_command=1.5\n"
      "mesh_points=[4.5,4,5]\n[damage]\nlimit=0.1\n[material]\nyoungs_modulus=2e8\nthickness=5e-5\n",
      "object.mesh_points: must be three whole numbers"),
+    (_ZIP, r"contents.count: must be a whole number from 1 to 64, got None"),
+    (_ZIP + "[contents]\ncount=9\nsize=[0.0079,0.0079,0.0057]\nmass=0.0001\n",
+     r"contents: 9 items of 15.8 x 15.8 x 11.4 mm do not lie in one layer inside 48 x 23 x 16 mm"),
+    (_ZIP + "[contents]\ncount=2\nsize=[0.0079,0.0079,0.0057]\nmass=0.002\n",
+     r"contents.mass: each item > 0 kg and all 2 lighter than the bag's total 0.00253 kg"),
+    ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\n[damage]\n"
+     "criterion='none'\n[contents]\ncount=1\n", "contents: only a zipper_bag holds loose contents"),
 ])
 def test_a_bad_object_file_names_the_file_and_the_key(tmp_path, text, message):
     f = _write(tmp_path / "bad.toml", text)

@@ -76,7 +76,7 @@ def test_paper_box_shell_is_closed_and_compiles():
     assert len(mesh.vertices) == 2 * (nx * ny + ny * nz + nz * nx) - 4 * (nx + ny + nz) + 8
 
 
-@pytest.mark.parametrize("name", ["paper_box", "bag", "balloon"])
+@pytest.mark.parametrize("name", ["paper_box", "bag", "bag_pack", "balloon"])
 def test_the_mesh_resolution_reaches_the_flex(name):
     import dataclasses
 

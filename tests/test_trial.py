@@ -154,7 +154,7 @@ def _close_on(name, *, at_grasp_height=False):
     return m, probe, stepper, fresh
 
 
-@pytest.mark.parametrize("name", ["balloon", "bag"])
+@pytest.mark.parametrize("name", ["balloon", "bag", "bag_pack"])
 def test_flex_strain_is_read_at_every_step(name):
     """The trial's flex strain comes from every step's state (rollout rows), not only from the
     chunk's end: the per-step reading of the last row equals a fresh evaluation of that state,
@@ -171,7 +171,7 @@ def test_bag_pack_does_not_sink_through_the_film():
     contact goes deeper than twice the film's collision radius (the film is 50 µm thick; its
     collision shell is 0.7 mm). With MuJoCo's default on the pack's side the pack sank 8-14 mm
     into the film here, and 10-17 mm in full trials."""
-    m, probe, _, f = _close_on("bag", at_grasp_height=True)
+    m, probe, _, f = _close_on("bag_pack", at_grasp_height=True)
     # The fingers do press on the pack (3-5 N each with the calibrated springs of 0.6.0; 15 N
     # with 0.5.x's stiff springs, see docs/calibration.md on the bag).
     assert (probe.finger_forces(f) > 2.0).all()
