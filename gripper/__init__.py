@@ -23,10 +23,10 @@ Damage models checked with a platen crush (the balloon bursts when flattened):
     >>> crush_test("balloon", depth=0.040)["damaged"]                    # doctest: +SKIP
     True
 
-The Gymnasium environment ``SoftGripperGrasp-v4`` is registered on import:
+The Gymnasium environment ``SoftGripperGrasp-v5`` is registered on import:
 
     >>> import gymnasium as gym
-    >>> env = gym.make("gripper:SoftGripperGrasp-v4", objects="block")   # doctest: +SKIP
+    >>> env = gym.make("gripper:SoftGripperGrasp-v5", objects="block")   # doctest: +SKIP
 """
 
 import importlib

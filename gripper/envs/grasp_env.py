@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v4``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v5``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v4")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v5")``.
 """
 
 from __future__ import annotations
@@ -220,7 +220,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v4", **kwargs)``:
+    ``gymnasium.make("gripper:SoftGripperGrasp-v5", **kwargs)``:
 
     | argument | default | meaning |
     |---|---|---|
@@ -282,10 +282,14 @@ class SoftGripperGraspEnv(gym.Env):
       so it was always 0), and so does the contact reward, now off by default; the reach reward
       is 1 - tanh(d / 5 cm) (was -d); success no longer ends the episode. The physics is
       unchanged. v3 is no longer registered.
+    - v5, package 0.12.0: the library's ``"bag"`` is a zipper storage bag holding two loose
+      bricks (``gripper/data/objects/bag.toml``); the pack-in-a-bag of v4 is ``"bag_pack"``.
+      Episodes with the bag have other dynamics; the rigid objects, the balloon and the paper
+      box, the spaces, rewards and episode rules are unchanged. v4 is no longer registered.
 
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v4", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v5", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """

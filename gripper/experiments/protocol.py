@@ -60,7 +60,8 @@ class GraspProtocol(Validated):
     palm_clearance: float = param(0.010, "m", ge=0, le=0.1, source="assumed: palm above the object's top")
     approach: str = param("sensed", "-", choices=APPROACHES,
                           source="sensed: from the palm camera's depth estimate; catalogue: from the object's "
-                          "size, centred under the palm (0.11.0's rule, for comparison)")
+                          "size, centred under the palm (0.11.0's rule, for comparison; the envelope grasp "
+                          "unless grasp = fingertip)")
     centre: bool = param(True, "-", source="sensed: centre the palm over the estimated footprint's centroid")
     grasp: str = param("auto", "-", choices=GRASP_CHOICES,
                        source="auto: the fingertip grasp where the tips reach the support beside the "
