@@ -58,8 +58,9 @@ KINDS = (*RIGID_KINDS, "balloon", "paper_box", "bag", "zipper_bag")
 # - paper box: 5 x 5 x 6 points (10 x 10 x 12 mm spacing, 114 vertices); 4 x 4 x 5 would halve
 #   its cost and keep the benchmark's outcomes, but its faces are 23-53 % stiffer under a finger;
 # - bag: 4 x 4 x 5 points (64 vertices: film elements of about 17 mm), half the cost of 5 x 5 x 6
-#   with the outcome and the strain inside the 4 / 5 / 6-point spread.
-DEFAULT_MESH_POINTS = {"balloon": (5, 5, 5), "paper_box": (5, 5, 6), "bag": (4, 4, 5), "zipper_bag": (6, 6, 3)}
+#   with the outcome and the strain inside the 4 / 5 / 6-point spread;
+# - zipper bag: 6 x 4 x 3 points (about 10 x 7.5 x 8 mm film elements; docs/objects.md).
+DEFAULT_MESH_POINTS = {"balloon": (5, 5, 5), "paper_box": (5, 5, 6), "bag": (4, 4, 5), "zipper_bag": (6, 4, 3)}
 # Allowed resolutions: flexcomp needs 3 points an axis for a closed surface; 12 is a 10-fold cost.
 MESH_POINTS_RANGE = (3, 12)
 # The open fingers' grasping faces stand this far from the palm axis in the default design
