@@ -85,3 +85,19 @@ def test_fingertip_grasp_holds_a_low_part_the_envelope_cannot(index):
     assert tip.success, tip.failed_phase
     env = run_trial(pack, seed=1, index=index, protocol=GraspProtocol(grasp="envelope"))
     assert not env.success
+
+
+def test_no_object_trials_are_counted_apart_from_errors():
+    from gripper.bench.benchmark import BenchConfig, summarize
+
+    rec = run_trial("block", seed=1, index=0, placement=Placement(x=0.3)).to_dict()
+    s = summarize([rec], BenchConfig(objects=("block",), trials=1).validate())["objects"]["block"]
+    assert s["no_object"] == 1 and s["errors"] == 0 and s["success_rate"] is None
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("index", range(3))
+def test_the_zipper_bag_is_held_undamaged(index):
+    rec = run_trial("bag", seed=1, index=index)
+    assert rec.status == "ok" and rec.warnings == 0
+    assert rec.grasp == "fingertip" and rec.success and not rec.damaged

@@ -17,7 +17,8 @@ from gripper.sim.scene import build_grasp_scene
 P = GripperParams()
 
 
-def _points(obj, place, cam=DepthCamera(), seed=0):
+def _points(obj, place, cam=None, seed=0):
+    cam = cam or DepthCamera()
     m = build_grasp_scene(P, obj, place)
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)

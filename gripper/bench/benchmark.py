@@ -7,8 +7,9 @@ Output folder layout:
 - ``trials.jsonl``: one JSON line per finished trial, appended in trial order, flushed and
   fsynced as it goes (a crash loses at most the trial being written; a torn last line is
   dropped on resume);
-- ``summary.csv`` / ``summary.json``: per object ``trials``, ``errors``, ``successes``,
-  ``success_rate`` (over trials without error), ``ci95`` (Wilson score interval),
+- ``summary.csv`` / ``summary.json``: per object ``trials``, ``errors`` (unstable),
+  ``successes``, ``success_rate`` (over the trials that ran to their end: neither unstable nor
+  ``no_object``, which the JSON counts as ``no_object``), ``ci95`` (Wilson score interval),
   ``damage_rate``, ``median_peak_force_N``, ``p95_peak_force_N``, ``mean_wall_time_s``; plus
   ``config_hash``, ``versions`` and ``wall_time_s``.
 
@@ -191,7 +192,8 @@ def summarize(records: Sequence[Mapping], cfg: BenchConfig, wall_time_s: float =
         forces = [r["peak_total_force_N"] for r in ok]
         lo, hi = wilson_interval(s, n)
         per[obj] = {
-            "trials": len(rs), "errors": len(rs) - n, "successes": s,
+            "trials": len(rs), "errors": sum(1 for r in rs if r["status"] == "error"),
+            "no_object": sum(1 for r in rs if r["status"] == "no_object"), "successes": s,
             "success_rate": s / n if n else None, "ci95": [lo, hi],
             "damage_rate": sum(1 for r in ok if r["damaged"]) / n if n else None,
             "median_peak_force_N": statistics.median(forces) if forces else None,

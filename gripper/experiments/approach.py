@@ -8,8 +8,9 @@ Two grasps:
   support, whichever is higher, and the fingers curl around the object;
 - **fingertip** (a surface-constrained grasp, as soft hands use the table to pick up low
   parts): the palm lowers the straight fingertips to ``fingertip_clearance`` above the sensed
-  support, and while the fingers close, it descends so that their lowest point stays at that
-  clearance: the tips sweep inwards along the support and meet the object at its base. The
+  support (0 by default: onto it), and while the fingers close, it descends so that their
+  lowest point stays at that clearance: the tips sweep inwards along the support and meet the
+  object at its base. The
   descent follows the gripper's own free-closing kinematics (:func:`finger_reach`: how far below
   the palm the fingers reach at each spool angle, simulated once per design), never the object,
   and it stops ``palm_clearance`` above the sensed top.

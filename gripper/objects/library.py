@@ -202,7 +202,9 @@ class GraspObject(Validated):
     def to_dict(self) -> dict:
         """The physics of the object (everything but :attr:`reasons`; the contents only where
         there are some), JSON-ready."""
-        skip = {"reasons"} | ({"contents_count", "contents_size", "contents_mass"} if not self.contents_count else set())
+        skip = {"reasons"}
+        if not self.contents_count:
+            skip |= {"contents_count", "contents_size", "contents_mass"}
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.name not in skip}
 
 
