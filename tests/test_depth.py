@@ -95,3 +95,15 @@ def test_rays_see_flexes():
     # above the pack's
     assert obj.height - 0.005 < est.height < obj.height + 0.002
     assert est.height > pack_top + 0.015
+
+
+def test_a_part_that_fills_the_view_is_still_seen():
+    """A 110 mm box turned 45° covers all of the region of interest but its corners: the
+    support is then found from the lowest 2 % of the points, not the lowest fifth."""
+    obj = GraspObject(name="wide", kind="rigid_box", size=(0.055, 0.055, 0.030), mass=0.05, friction=0.6,
+                      yaw_symmetric=False, close_command=3.0, damage="none", damage_limit=0.0, oversize=True)
+    cam = DepthCamera()
+    _, _, pts = _points(obj, Placement(yaw=math.pi / 4), cam)
+    est = estimate_object(pts, cam)
+    assert abs(est.support_z) < 1e-3
+    assert est.height == pytest.approx(obj.height + 0.001, abs=1.5e-3)

@@ -407,7 +407,8 @@ def _cmd_envelope(args) -> int:
         grip = f"{rng[0] * 1e3:g}-{rng[1] * 1e3:g} mm" if rng else "none held"
         pay = f"{s['payload_kg']:g} kg" if s["payload_kg"] is not None else "none held"
         print(f"{shape:<10} gripping range {grip:<14} payload {pay}")
-    print(f"{summary['errors']} unstable trials, {summary['warnings']} MuJoCo warnings; wrote {args.out}/"
+    print(f"{summary['errors']} unstable trials, {summary.get('no_object', 0)} with no object seen, "
+          f"{summary['warnings']} MuJoCo warnings; wrote {args.out}/"
           "trials.jsonl, envelope.csv, summary.json, map_*.png")
     return EXIT_UNSTABLE if summary["errors"] else 0
 

@@ -20,7 +20,9 @@ The estimate (:func:`estimate_object`) needs no knowledge of the object:
 
 - the **support** height is the median height of the points within ``object_threshold`` of
   the lowest fifth's top (the object covers well under half of the region of interest for
-  everything the gripper can open around, so that fifth is the table);
+  everything the gripper can open around, so that fifth is the table); where nothing then
+  stands above the support (a part so wide that it fills more than four fifths of the view, as
+  a 110 mm box does at some yaws), the lowest 2 % are the table instead;
 - **object points** stand more than ``object_threshold`` above the support; of these, the
   largest 8-connected patch of pixels is the object (a lone noisy floor pixel is not); fewer
   than ``min_object_pixels`` of them is "no object seen" (:class:`NoObjectSeen`);
@@ -47,8 +49,9 @@ import numpy as np
 
 from gripper.core.fields import Validated, param
 
-# Share of the measured points, the lowest, that are taken to be the support surface.
-SUPPORT_QUANTILE = 0.2
+# Shares of the measured points, the lowest, taken to be the support surface: a fifth, or, where
+# nothing then stands above it (an object that fills more than four fifths of the view), 2 %.
+SUPPORT_QUANTILES = (0.2, 0.02)
 # Percentile of the object points' heights taken as its top.
 TOP_PERCENTILE = 98.0
 
@@ -181,8 +184,11 @@ def estimate_object(points: np.ndarray, cam: DepthCamera) -> ObjectEstimate:
     if len(pts) < 10:
         raise NoObjectSeen(f"no object seen: the depth image has {len(pts)} valid pixels")
     z = pts[:, 2]
-    level = float(np.quantile(z, SUPPORT_QUANTILE))
-    support = float(np.median(z[np.abs(z - level) < cam.object_threshold]))
+    for q in SUPPORT_QUANTILES:  # the lowest fifth is the table, unless the object fills the view
+        level = float(np.quantile(z, q))
+        support = float(np.median(z[np.abs(z - level) < cam.object_threshold]))
+        if (z > support + cam.object_threshold).sum() >= cam.min_object_pixels:
+            break
     above = valid.copy()
     above[valid] = points[valid, 2] > support + cam.object_threshold
     n = int(round(math.sqrt(len(points))))

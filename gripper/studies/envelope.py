@@ -220,7 +220,8 @@ def write_table(records: list[dict], path: Path) -> None:
 
 
 def held_fractions(records: list[dict]) -> dict[int, float | None]:
-    """Per point: the success fraction of its trials without error (None if all errored)."""
+    """Per point: the success fraction of its trials that ran to their end (None if none did:
+    all unstable or no object seen)."""
     ok: dict[int, list[bool]] = {}
     for r in records:
         ok.setdefault(r["point"], [])
@@ -234,7 +235,8 @@ def summarize(records: list[dict], env: Envelope) -> dict:
     pts = env.points()
     frac_of = held_fractions(records)
     out: dict = {"grip_tension_N": env.grip_tension, "held_fraction": HELD_FRACTION, "shapes": {},
-                 "errors": sum(r["status"] != "ok" for r in records),
+                 "errors": sum(r["status"] == "error" for r in records),
+                 "no_object": sum(r["status"] == "no_object" for r in records),
                  "warnings": sum(r["warnings"] for r in records), "envelope_hash": env.hash()}
     for shape in env.shapes:
         for mu in env.frictions:
