@@ -104,7 +104,7 @@ def test_gripping_range_and_payload_from_the_held_points():
 def test_flags_replace_the_files_keys(tmp_path, capsys):
     out = tmp_path / "flags"
     assert main(["envelope", "--shapes", "box", "--sizes", "0.045", "--masses", "0.05", "--trials", "1",
-                 "--workers", "1", "--no-progress", "--out", str(out)]) == 0
+                 "--frictions", "0.6", "--workers", "1", "--no-progress", "--out", str(out)]) == 0
     rows = (out / "envelope.csv").read_text().splitlines()
     assert len(rows) == 2 and rows[1].startswith("box,0.045,0.05,0.6,0,ok,")
     assert "gripping range" in capsys.readouterr().out

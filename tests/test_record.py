@@ -41,7 +41,8 @@ def test_an_error_record_omits_the_outcome_and_keeps_the_reason(record):
                               lift_height_m=None, slip_m=None, max_slip_m=None, damaged=None,
                               damage_measure=None, damage_limit=None, close_command_rad=None,
                               policy=None, servo_at_grasp=None, servo_at_hold_end=None, grip_tension_N=None,
-                              contact_time_s=None, grasp_time_s=None)
+                              contact_time_s=None, grasp_time_s=None, grasp=None, palm_xy_m=None,
+                              depth_estimate=None)
     d = err.to_dict()
     assert "lift_height_m" not in d and d["error"] == "nan at t=1"
     assert TrialRecord.from_dict(json.loads(json.dumps(d))) == err
