@@ -21,6 +21,7 @@ Damage models checked with a platen crush (the balloon bursts when flattened):
 
     >>> from gripper import crush_test
     >>> crush_test("balloon", depth=0.040)["damaged"]                    # doctest: +SKIP
+    >>> run_trial("bag", camera=DepthCamera(dropout=0.1)).depth_estimate  # doctest: +SKIP
     True
 
 The Gymnasium environment ``SoftGripperGrasp-v5`` is registered on import:
@@ -64,6 +65,8 @@ _EXPORTS = {
     "load_envelope": "gripper.studies.envelope",
     "run_envelope": "gripper.studies.envelope",
     "ServoSensing": "gripper.sim.sensing",
+    "DepthCamera": "gripper.sim.depth",
+    "estimate_object": "gripper.sim.depth",
     "Calibration": "gripper.calibration.calfile",
     "apply_calibration": "gripper.calibration.calfile",
     "design_hash": "gripper.calibration.calfile",
