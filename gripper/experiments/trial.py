@@ -209,9 +209,17 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
     z_close: Any = z_grasp
     if grip is None:
         t_close = close_cmd / close_rate
-        run_phase(stepper, probe, rec, ctrl(lambda t: close_cmd * np.minimum(1.0, t / t_close), z_grasp, xc, yc),
-                  t_close + proto.close_hold_s, ch, "close")
+
+        def ramp(t):
+            return close_cmd * np.minimum(1.0, t / t_close)
+
+        if plan.grasp == "fingertip":  # the palm follows the fingers' reach down the ramp
+            def z_close(t):
+                return fingertip_palm_z(plan, p, proto, ramp(t)) - home
+        run_phase(stepper, probe, rec, ctrl(ramp, z_close, xc, yc), t_close + proto.close_hold_s, ch, "close")
         hold_cmd = close_cmd
+        if plan.grasp == "fingertip":
+            z_grasp = float(fingertip_palm_z(plan, p, proto, close_cmd) - home)
     else:
         grip.start(d)
 
