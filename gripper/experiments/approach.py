@@ -44,7 +44,8 @@ from gripper.sim.depth import ObjectEstimate
 GRASPS = ("envelope", "fingertip")
 
 # Spool angles at which the free-closing reach is tabulated [rad], and the settling time at
-# each [s] (the fingers are at rest within 0.3 s at the trials' step; measured).
+# each [s]: holding each angle 0.8 s instead moves the table by at most 0.19 mm (reach below the
+# palm) and 0.36 mm (closest approach to the axis), measured at the trials' 2 ms step.
 REACH_ANGLES = np.linspace(0.0, 2.2, 23)
 REACH_SETTLE_S = 0.4
 _REACH: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
