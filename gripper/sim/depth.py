@@ -160,11 +160,12 @@ def depth_points(m: mujoco.MjModel, d: mujoco.MjData, cam: DepthCamera, origin: 
                 dist[i] = t
     axis = -np.asarray(rot)[:, 2]
     cos = dirs @ axis  # depth along the optical axis per unit of range
-    z = dist * cos
-    seen = np.isfinite(z) & (z >= cam.min_range) & (z <= cam.max_range)
+    seen = np.isfinite(dist)
+    z = np.where(seen, dist, 0.0) * cos
+    seen &= (z >= cam.min_range) & (z <= cam.max_range)
     z_noisy = z + rng.standard_normal(n) * np.where(seen, cam.depth_sigma(np.where(seen, z, 0.0)), 0.0)
     seen &= rng.random(n) >= cam.dropout
-    pts = pnt + dirs * (z_noisy / cos)[:, None]
+    pts = pnt + dirs * np.where(seen, z_noisy / cos, 0.0)[:, None]
     pts[~seen] = np.nan
     return pts
 
