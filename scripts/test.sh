@@ -9,8 +9,14 @@ bash scripts/setup.sh
 .venv/bin/lint-imports --no-cache >/dev/null || .venv/bin/lint-imports --no-cache
 site="$(mktemp -d)"
 mypy_log="$(mktemp)"
-trap 'rm -rf "$site" "$mypy_log"' EXIT
-NO_MKDOCS_2_WARNING=1 .venv/bin/mkdocs build --strict --quiet --site-dir "$site"
+docs_log="$(mktemp)"
+trap 'rm -rf "$site" "$mypy_log" "$docs_log"' EXIT
+# not --quiet: it hides the warnings that --strict counts; the log is shown only on failure
+if ! NO_MKDOCS_2_WARNING=1 .venv/bin/mkdocs build --strict --site-dir "$site" >"$docs_log" 2>&1; then
+  cat "$docs_log" >&2
+  echo "mkdocs: the docs site does not build (above)" >&2
+  exit 1
+fi
 .venv/bin/mypy >"$mypy_log" 2>&1 &
 mypy_pid=$!
 if [ "${1:-}" = "--slow" ]; then

@@ -33,38 +33,35 @@ def _schema() -> str:
     return "```json\n" + json.dumps(TrialRecord.json_schema(), indent=2) + "\n```"
 
 
-def _protocol_table() -> str:
+def _fields_table(classes, number_format: str = "") -> str:
+    """One Markdown row per declared field of each (dataclass, prefix): default, unit, allowed
+    values and source."""
     from gripper.core.fields import field_specs
-    from gripper.experiments.protocol import GraspProtocol, TrialNoise
 
     lines = ["| field | default | unit | allowed | source |", "|---|---|---|---|---|"]
-    for cls, prefix in ((GraspProtocol, "protocol"), (TrialNoise, "noise")):
+    for cls, prefix in classes:
         for name, spec in field_specs(cls).items():
-            lines.append(f"| {prefix}.{name} | {getattr(cls(), name)} | {spec.unit} | {spec.allowed()} "
-                         f"| {spec.source} |")
+            lines.append(f"| {prefix}.{name} | {getattr(cls(), name):{number_format}} | {spec.unit} "
+                         f"| {spec.allowed()} | {spec.source} |")
     return "\n".join(lines)
+
+
+def _protocol_table() -> str:
+    from gripper.experiments.protocol import GraspProtocol, TrialNoise
+
+    return _fields_table(((GraspProtocol, "protocol"), (TrialNoise, "noise")))
 
 
 def _sensing_table() -> str:
-    from gripper.core.fields import field_specs
     from gripper.sim.sensing import ServoSensing
 
-    lines = ["| field | default | unit | allowed | source |", "|---|---|---|---|---|"]
-    for name, spec in field_specs(ServoSensing).items():
-        lines.append(f"| sensing.{name} | {getattr(ServoSensing(), name):.4g} | {spec.unit} | {spec.allowed()} "
-                     f"| {spec.source} |")
-    return "\n".join(lines)
+    return _fields_table(((ServoSensing, "sensing"),), ".4g")
 
 
 def _depth_camera_table() -> str:
-    from gripper.core.fields import field_specs
     from gripper.sim.depth import DepthCamera
 
-    lines = ["| field | default | unit | allowed | source |", "|---|---|---|---|---|"]
-    for name, spec in field_specs(DepthCamera).items():
-        lines.append(f"| depth.{name} | {getattr(DepthCamera(), name):.4g} | {spec.unit} | {spec.allowed()} "
-                     f"| {spec.source} |")
-    return "\n".join(lines)
+    return _fields_table(((DepthCamera, "depth"),), ".4g")
 
 
 def _rl_hyperparams() -> str:

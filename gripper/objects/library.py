@@ -501,24 +501,33 @@ def box_shell(half: tuple[float, float, float], counts: tuple[int, int, int]):
     return mesh
 
 
-def _add_paper_box(spec, obj, pos, quat, mass, friction) -> None:
+def _shell_flex(spec, obj, *, mass, pos, quat, radius, poisson, damping, rgba, friction) -> mujoco.MjsFlex:
+    """A 2D flex over :func:`box_shell` of the object's size and mesh points, with its material
+    (modulus, thickness) and the deformables' contact: the paper box's card, the zipper bag's
+    film."""
     import tempfile
 
     mesh = box_shell(obj.size, obj.mesh_points)
     # make_flex reads a mesh from a file; the shell is generated, written to a temporary OBJ
     with tempfile.TemporaryDirectory() as tmp:
-        path = str(Path(tmp) / "paper_box_shell.obj")
+        path = str(Path(tmp) / "shell.obj")
         mesh.export(path)
         flex = spec.worldbody.make_flex(
-            OBJECT_BODY, type="mesh", file=path, dim=2, dof="full", radius=0.001, mass=mass,
+            OBJECT_BODY, type="mesh", file=path, dim=2, dof="full", radius=radius, mass=mass,
             inertiabox=0.002, pos=pos, quat=quat, elastic2d=3)
     flex.young = obj.youngs_modulus
-    flex.poisson = PAPER_POISSON
+    flex.poisson = poisson
     flex.thickness = obj.thickness
-    flex.damping = PAPER_BOX_DAMPING
-    flex.stressyield = [obj.yield_strain, obj.yield_strain]  # [stretching, bending]
-    flex.rgba = [0.78, 0.65, 0.45, 1.0]
+    flex.damping = damping
+    flex.rgba = rgba
     _flex_contact(flex, friction)
+    return flex
+
+
+def _add_paper_box(spec, obj, pos, quat, mass, friction) -> None:
+    flex = _shell_flex(spec, obj, mass=mass, pos=pos, quat=quat, radius=0.001, poisson=PAPER_POISSON,
+                       damping=PAPER_BOX_DAMPING, rgba=[0.78, 0.65, 0.45, 1.0], friction=friction)
+    flex.stressyield = [obj.yield_strain, obj.yield_strain]  # [stretching, bending]
 
 
 # A zipper bag's contents lie in one layer on the bag's floor, in a grid, this far from the film
@@ -600,23 +609,10 @@ def _add_bag(spec, obj, pos, quat, mass, friction, mass_scale) -> None:
 def _add_zipper_bag(spec, obj, pos, yaw, friction, mass_scale) -> None:
     """A closed zipper bag: a film shell (a box surface of the filled bag's size, as the paper
     box's, with the film's modulus and gauge) holding loose rigid items in one layer."""
-    import tempfile
-
     film_mass = (obj.mass - obj.contents_count * obj.contents_mass) * mass_scale
     quat = _yaw_quat(yaw)
-    mesh = box_shell(obj.size, obj.mesh_points)
-    with tempfile.TemporaryDirectory() as tmp:
-        path = str(Path(tmp) / "zipper_bag_film.obj")
-        mesh.export(path)
-        flex = spec.worldbody.make_flex(
-            OBJECT_BODY, type="mesh", file=path, dim=2, dof="full", radius=0.0007, mass=film_mass,
-            inertiabox=0.002, pos=pos, quat=quat, elastic2d=3)
-    flex.young = obj.youngs_modulus
-    flex.poisson = PE_POISSON
-    flex.thickness = obj.thickness
-    flex.damping = BAG_DAMPING
-    flex.rgba = [0.75, 0.85, 0.95, 0.5]
-    _flex_contact(flex, friction)
+    _shell_flex(spec, obj, mass=film_mass, pos=pos, quat=quat, radius=0.0007, poisson=PE_POISSON,
+                damping=BAG_DAMPING, rgba=[0.75, 0.85, 0.95, 0.5], friction=friction)
     c, s_ = math.cos(yaw), math.sin(yaw)
     for k, (x, y, z) in enumerate(zipper_bag_layout(obj)):
         body = spec.worldbody.add_body(name=f"{CONTENTS_BODY}_{k}",
