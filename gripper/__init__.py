@@ -37,6 +37,20 @@ from gripper.render.backend import defer_gl_backend
 
 defer_gl_backend()  # no OpenGL library until something renders (gripper.render.backend)
 
+
+def _no_mujoco_log_file() -> None:
+    """MuJoCo appends its warnings to ``MUJOCO_LOG.TXT`` in the current folder by default; the
+    package counts every warning in its records instead (gripper.sim.stability), so the file
+    would only be litter in the user's folder. The console copy stays."""
+    import mujoco
+
+    log = mujoco.MjLogConfig.get()
+    log.logto_file = False
+    log.set()
+
+
+_no_mujoco_log_file()
+
 # The public API, imported on first use (``import gripper`` stays quick): name -> module.
 _EXPORTS = {
     "GripperParams": "gripper.core.params",

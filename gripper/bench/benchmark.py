@@ -77,8 +77,13 @@ class BenchConfig(Validated):
     def validate(self) -> BenchConfig:
         if not isinstance(self.trials, int) or self.trials < 1:
             raise ValueError(f"trials: must be an integer >= 1, got {self.trials!r}")
+        if not isinstance(self.seed, int) or isinstance(self.seed, bool) or not 0 <= self.seed < 2**32:
+            raise ValueError(f"seed: must be an integer in [0, 2**32 - 1], got {self.seed!r}")
         if not self.objects:
             raise ValueError("objects: give at least one object")
+        twice = sorted({o for o in self.objects if self.objects.count(o) > 1})
+        if twice:
+            raise ValueError(f"objects: {', '.join(twice)} listed more than once; give each once")
         seen: dict[str, str] = {}
         for spec, name in zip(self.objects, self.names(), strict=True):
             if name in seen:
@@ -123,6 +128,10 @@ class BenchConfig(Validated):
         return [(name, i) for name in self.names() for i in range(self.trials)]
 
 
+# The files of a benchmark run folder.
+RUN_FILES = ("config.json", "trials.jsonl", "summary.json", "summary.csv")
+
+
 def _run_one(cfg: BenchConfig, obj: str, index: int, run_hash: str) -> dict:
     """One trial of object spec ``obj``, as the JSON record the run's file holds (``run_hash``:
     the run's configuration hash, computed once per run)."""
@@ -150,7 +159,7 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
     cfg.validate()
     run_hash = cfg.hash()
     out = open_run(out, workers, scheduler, "config.json", "config", run_hash, cfg.identity(),
-                   "a run with another configuration")
+                   "a run with another configuration", RUN_FILES)
     tpath = out / "trials.jsonl"
     done: dict[tuple[str, int], Mapping] = {}
     for r in read_trials(tpath):
@@ -164,7 +173,7 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
                 progress=(len(jobs), len(jobs) - len(todo), "grasp trials") if progress else None)
     _keep_trial_order(tpath, jobs)
     records = [done[j] for j in jobs]
-    summary = summarize(records, cfg, wall_time_s=time.perf_counter() - t0)
+    summary = summarize(records, cfg, wall_time_s=time.perf_counter() - t0, resumed=len(jobs) - len(todo))
     write_summary(out, summary)
     return summary
 
@@ -181,8 +190,9 @@ def _keep_trial_order(tpath: Path, jobs: list[tuple[str, int]]) -> None:
     write_atomic(tpath, lambda tmp: Path(tmp).write_text("".join(keyed[k][1] + "\n" for k in order)))
 
 
-def summarize(records: Sequence[Mapping], cfg: BenchConfig, wall_time_s: float = 0.0) -> dict:
-    """Per-object statistics of ``records`` (see the module docstring)."""
+def summarize(records: Sequence[Mapping], cfg: BenchConfig, wall_time_s: float = 0.0, resumed: int = 0) -> dict:
+    """Per-object statistics of ``records`` (see the module docstring). ``wall_time_s`` is this
+    call's; ``resumed`` counts the records it found in the folder from earlier calls."""
     per = {}
     for obj in cfg.names():
         rs = [r for r in records if r["object"] == obj]
@@ -204,7 +214,7 @@ def summarize(records: Sequence[Mapping], cfg: BenchConfig, wall_time_s: float =
                               for ph in ("lift", "hold", "shake", "damage")},
         }
     return {"objects": per, "config_hash": cfg.hash(), "versions": versions(),
-            "wall_time_s": wall_time_s, "trials_per_object": cfg.trials, "seed": cfg.seed}
+            "wall_time_s": wall_time_s, "resumed": resumed, "trials_per_object": cfg.trials, "seed": cfg.seed}
 
 
 SUMMARY_COLUMNS = ("object", "trials", "errors", "successes", "success_rate", "ci95_low", "ci95_high",
@@ -239,6 +249,9 @@ def format_table(summary: dict) -> str:
                      f"{f(s['success_rate'], '6.2f')} {ci:>13} {f(s['damage_rate'], '7.2f')} "
                      f"{f(s['median_peak_force_N'], '8.2f')} {f(s['p95_peak_force_N'], '8.2f')} "
                      f"{f(s['mean_wall_time_s'], '7.2f')}")
-    lines.append(f"config {summary['config_hash']}  wall {summary['wall_time_s']:.1f} s  "
-                 f"mujoco {summary['versions']['mujoco']}")
+    resumed = summary.get("resumed", 0)
+    total = sum(s["trials"] for s in summary["objects"].values())
+    wall = f"wall {summary['wall_time_s']:.1f} s" + (
+        f" for {total - resumed} new trials ({resumed} resumed from the folder)" if resumed else "")
+    lines.append(f"config {summary['config_hash']}  {wall}  mujoco {summary['versions']['mujoco']}")
     return "\n".join(lines)

@@ -13,7 +13,9 @@ Example:
 from __future__ import annotations
 
 import json
+import logging
 import os
+import signal
 import socket
 import sys
 from collections.abc import Callable, Sequence
@@ -74,24 +76,26 @@ def check_scheduler(address: str | None, timeout: float = SCHEDULER_TIMEOUT_S) -
 
 
 def open_run(out: str | Path, workers: int, scheduler: str | None, filename: str, key: str, h: str,
-             payload: dict, what: str) -> Path:
+             payload: dict, what: str, files: tuple[str, ...] = ()) -> Path:
     """Check the worker count and the scheduler, then claim ``out`` (:func:`claim_run_dir`):
-    a refused run leaves no folder behind. Returns ``out`` as a path."""
+    a refused run leaves no folder behind. ``files``: the run's other files, each of which must
+    be a writable regular file where it exists. Returns ``out`` as a path."""
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise ValueError(f"--workers: must be an integer >= 1, got {workers!r}")
     check_scheduler(scheduler)
     out = Path(out)
-    claim_run_dir(out, filename, key, h, payload, what)
+    claim_run_dir(out, filename, key, h, payload, what, files)
     return out
 
 
-def claim_run_dir(out: Path, filename: str, key: str, h: str, payload: dict, what: str) -> None:
+def claim_run_dir(out: Path, filename: str, key: str, h: str, payload: dict, what: str,
+                  files: tuple[str, ...] = ()) -> None:
     """Create ``out`` and record the run's identity in ``out/filename`` ({key}_hash, {key},
     versions); an existing record with another hash is refused (ValueError naming ``--out``)."""
     from gripper.core.atomic import check_output_dir
     from gripper.core.provenance import versions
 
-    check_output_dir(out)
+    check_output_dir(out, files=(filename, *files))
     out.mkdir(parents=True, exist_ok=True)
     cfile = out / filename
     if cfile.exists():
@@ -121,8 +125,16 @@ def executor(workers: int, scheduler: str | None):
     if scheduler:
         client = Client(scheduler)
         return client, client.close, True
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0")
-    client = Client(cluster)
+    # The worker processes start with Ctrl-C ignored (a disposition a child process inherits):
+    # a terminal's SIGINT reaches the whole process group, and only this process should act on
+    # it, closing the cluster once, instead of every worker printing its own traceback.
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                               silence_logs=logging.ERROR)  # a failed task is raised here, once
+        client = Client(cluster)
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
     def close():
         client.close()

@@ -65,7 +65,9 @@ class FitConfig(Validated):
     Attributes:
         fit_damping: also fit per-hinge damping (needs a record with a transient) [-].
         held_out: indices of the static points (load levels) left out of the fit [-].
-            Default (2,): the middle of five levels.
+            Default (2,): the middle of five levels. Distinct indices >= 0; checked against
+            the record's levels by :func:`check_held_out` (``gripper calibrate`` does so before
+            the reference run).
         angle_sigma_deg: scale of the angle residuals [deg] (1°: a protractor on a bench).
         tip_sigma_m: scale of the tip residuals [m] (1 mm).
         stiffness_bounds: bounds of each hinge stiffness [N·m/rad].
@@ -101,6 +103,10 @@ class FitConfig(Validated):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise ValueError(f"fit.{name}: must be > 0, got {v!r}")
+        # the range, duplicates and what remains to fit: check_held_out, against the levels
+        if not (isinstance(self.held_out, tuple | list) and all(map(_is_index, self.held_out))):
+            raise ValueError(f"--held-out (fit.held_out): must be a list of load level indices "
+                             f"(integers from 0), got {self.held_out!r}")
         if not (math.isfinite(self.static_weight) and self.static_weight >= 0):
             raise ValueError(f"fit.static_weight: must be >= 0, got {self.static_weight!r}")
         for name in ("stiffness_bounds", "damping_bounds"):
@@ -108,6 +114,79 @@ class FitConfig(Validated):
             if not (0 < lo < hi and math.isfinite(hi)):
                 raise ValueError(f"fit.{name}: need 0 < low < high, got {(lo, hi)!r}")
         return self
+
+
+def _is_index(v: object) -> bool:
+    return isinstance(v, int | np.integer) and not isinstance(v, bool)
+
+
+def check_held_out(held_out, n_levels: int, *, min_fit_levels: int = 1) -> set[int]:
+    """The held-out level indices as a set, checked against a record of ``n_levels`` static
+    points (load levels): each in ``0..n_levels - 1``, none twice, and at least
+    ``min_fit_levels`` levels left to fit.
+
+    Raises:
+        ValueError: one line naming ``--held-out`` and the allowed range.
+    """
+    most = n_levels - min_fit_levels
+    if most <= 0:
+        allowed = (f"allowed: none (the fit needs all {n_levels} load level"
+                   f"{'s' if n_levels != 1 else ''}; give --held-out '')")
+    else:
+        allowed = (f"allowed: distinct levels in 0..{n_levels - 1} ({n_levels} load levels), at "
+                   f"most {most} of them, leaving at least {min_fit_levels} to fit")
+    held = list(held_out)
+    for v in held:
+        if not _is_index(v) or not 0 <= v < n_levels:
+            raise ValueError(f"--held-out: level {v!r} does not exist; {allowed}")
+    for v in held:
+        if held.count(v) > 1:
+            raise ValueError(f"--held-out: level {v} is given twice; {allowed}")
+    if len(held) > max(most, 0):
+        raise ValueError(f"--held-out: {len(held)} of {n_levels} levels held out leaves "
+                         f"{n_levels - len(held)} to fit, fewer than {min_fit_levels}; {allowed}")
+    return set(int(v) for v in held)
+
+
+def min_fit_levels(record: BendingRecord, n_params: int) -> int:
+    """Static points a static fit of ``n_params`` parameters needs: enough finite observables
+    (element angles B2..Bn and tip x, z) for as many residuals as parameters."""
+    idx = record.static
+    if not len(idx):
+        return 1
+    per_row = (np.isfinite(record.element_angles_deg[idx, 1:]).sum(axis=1)
+               + np.isfinite(record.tip_xz_m[idx]).sum(axis=1))
+    least = int(per_row.min())
+    return max(1, math.ceil(n_params / least)) if least > 0 else len(idx) + 1
+
+
+# A fitted value within this fraction of a bound is "at the bound": the solver clamps a
+# parameter that wants to leave the box exactly onto it (mujoco.minimize, in log space).
+BOUND_RTOL = 1.0e-6
+
+
+def bound_warnings(stiffness: np.ndarray, damping: np.ndarray | None, cfg: FitConfig
+                   ) -> list[str]:
+    """One line per quantity and bound that fitted hinges ended at (see ``BOUND_RTOL``):
+    such a value is the box's, not the data's (a spring the data ask to be softer or stiffer
+    than the bounds allow: wrong units, a wrong tension, or a finger that does not fit the
+    hinge model). ``damping`` None: not fitted."""
+    out = []
+    items = [("stiffness", "N·m/rad", stiffness, cfg.stiffness_bounds, "stiffness_bounds",
+              ("softer", "stiffer"))]
+    if damping is not None:
+        items.append(("damping", "N·m·s/rad", damping, cfg.damping_bounds, "damping_bounds",
+                      ("less damped", "more damped")))
+    for what, unit, values, (lo, hi), name, wants in items:
+        for side, bound, want in (("lower", lo, wants[0]), ("upper", hi, wants[1])):
+            at = [j for j, v in enumerate(values) if abs(float(v) - bound) <= BOUND_RTOL * bound]
+            if at:
+                hinges = ", ".join(f"B{j + 1}-B{j + 2}" for j in at)
+                out.append(f"fit: {what} of hinge{'s' if len(at) > 1 else ''} {hinges} ended at "
+                           f"the {side} bound {bound:g} {unit} (fit.{name}): the data ask for a "
+                           f"hinge {want} than the bounds allow; the value is the bound's, not "
+                           f"the data's: check the data's units and tensions")
+    return out
 
 
 @dataclass
@@ -120,7 +199,8 @@ class FitResult:
         rest_angle_deg: per-hinge rest angle [deg] (not fitted: 0, moulded straight).
         fitted: the hinge model's record at the fitted values.
         metrics: fit quality (see :func:`fit_metrics`), plus ``diverged_trial_points``: parameter
-            points of the search whose run diverged and was rejected.
+            points of the search whose run diverged and was rejected, and ``warnings``: one
+            line per fitted quantity that ended at a bound (:func:`bound_warnings`).
         iterations: solver iterations.
         wall_time_s: fit wall time [s].
     """
@@ -265,10 +345,11 @@ def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
     static_only = not cfg.fit_damping
     sim = HingeSimulator(p, timestep)
     tension, step_of_sample, used = _history(record, timestep, static_only)
-    held = set(int(i) for i in cfg.held_out if 0 <= i < len(record.static))
-    held_windows = _held_out_mask(record, held)
-    fit_samples = np.array([i for i in used if not held_windows[i]])
     n_par = nh * (2 if cfg.fit_damping else 1)
+    held = check_held_out(cfg.held_out, len(record.static),
+                          min_fit_levels=min_fit_levels(record, n_par) if static_only else 1)
+    held_windows = _held_out_mask(record, held)
+    fit_samples = np.array([i for i in used if not held_windows[i]], dtype=int)
     n_obs = (np.isfinite(record.element_angles_deg[fit_samples, 1:]).sum()
              + np.isfinite(record.tip_xz_m[fit_samples]).sum())
     n_res = int(n_obs)
@@ -342,6 +423,9 @@ def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
     # diverged trial points (each also printed a MuJoCo warning): a count, so that a user with
     # wider bounds sees why the console filled with warnings while the fit still converged
     metrics["diverged_trial_points"] = sim.diverged
+    # fitted values at their bounds: one line each, stored with the calibration and printed by
+    # gripper calibrate ("warning: ...")
+    metrics["warnings"] = bound_warnings(k, c if cfg.fit_damping else None, cfg)
     return FitResult(stiffness=k, damping=c, rest_angle_deg=np.zeros(nh), fitted=fitted,
                      metrics=metrics, iterations=len(trace), wall_time_s=wall, config=cfg)
 

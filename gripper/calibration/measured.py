@@ -18,6 +18,15 @@ Either all element-angle columns or both tip columns (or both sets) must be pres
 required: shortening alone fixes the kinematics, not the stiffness (any stiffness scale gives
 the same angles at equal shortening), so the fit needs the load.
 
+What a bench can measure, checked row by row (each refusal one line naming file, row, column
+and the allowed range): column names unique; tension finite, > 0 (a row at zero tension carries
+no stiffness) and at most the servo's maximum cable tension (stall torque / spool radius, 53.9 N
+for the default ``hobby_6v`` preset and 20 mm spool); element angles finite, >= 0 (the cable
+curls the finger towards its grasping face) and at most the finger's full closure (every hinge
+at the cut's closure angle plus the reading margin, ``closure_angle_deg``) or, without the
+design's closure angle, ``MAX_BENDING_DEG``; and the bending (angle of the last element) growing
+with tension overall (positive least-squares slope).
+
 Example:
     >>> rec = read_measured_csv("gripper/data/calibration/example_bench.csv", 6)   # doctest: +SKIP
 """
@@ -32,13 +41,19 @@ import numpy as np
 
 from gripper.calibration.reference import CLOSED_CUT_MARGIN_DEG, BendingRecord
 
+# Largest element angle accepted when the caller gives no closure angle [deg]: a full turn, past
+# which the finger would pass through its own base. With the design's closure angle the limit is
+# every hinge closed (n_hinges x (closure + CLOSED_CUT_MARGIN_DEG), 224° for the default cut).
+MAX_BENDING_DEG = 360.0
+
 
 def angle_columns(n_segments: int) -> list[str]:
     return [f"angle_B{j}_deg" for j in range(2, n_segments + 1)]
 
 
 def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
-                      closure_angle_deg: float | None = None) -> BendingRecord:
+                      closure_angle_deg: float | None = None,
+                      max_tension_N: float | None = None) -> BendingRecord:
     """Read a bench CSV into a static :class:`BendingRecord` (missing observables are NaN).
 
     ``closure_angle_deg``: the design's closure angle [deg]; given, a row whose element angles
@@ -46,10 +61,15 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
     springs of the open cuts; past closure the squeezed teeth carry the load (gripper.model.closure),
     and fitting springs to such rows would make them too stiff.
 
+    ``max_tension_N``: the highest tension the servo can pull [N], ``ServoParams.max_cable_tension``
+    (stall torque / spool radius) of the design; None: the default design's servo (53.9 N).
+
     Raises:
         ValueError: one line naming the file, row and column at fault: unreadable file,
-            missing column, non-numeric or non-finite cell, fewer rows than ``min_points``, or
-            a row with a closed cut.
+            missing or duplicated column, non-numeric or non-finite cell, fewer rows than
+            ``min_points``, a tension not in (0, max_tension_N], an element angle not in
+            [0, full closure], bending that does not grow with tension, or a row with a closed
+            cut.
     """
     path = Path(path)
     name = path.name
@@ -64,6 +84,12 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
     if not rows:
         raise ValueError(f"data file {name}: empty; need a header row with tension_N")
     header = [h.strip() for h in rows[0]]
+    seen: set[str] = set()
+    for h in header:
+        if h and h in seen:
+            raise ValueError(f"data file {name}: column {h!r} appears twice in the header; every "
+                             f"column name must be unique")
+        seen.add(h)
     if "tension_N" not in header:
         raise ValueError(f"data file {name}: missing column 'tension_N' (cable tension [N]); "
                          f"shortening alone cannot fix the stiffness")
@@ -105,13 +131,36 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
         raise ValueError(f"data file {name}: {n} data rows, fewer than the {min_points} "
                          f"parameters to fit")
     tension = np.array(values["tension_N"])
-    if (tension < 0).any():
-        bad = int(np.flatnonzero(tension < 0)[0]) + 2
-        raise ValueError(f"data file {name}: row {bad}, column tension_N: must be >= 0 N")
+    if max_tension_N is None:
+        from gripper.core.params import GripperParams
+
+        max_tension_N = GripperParams().servo.max_cable_tension
+    t_range = f"allowed 0 < tension_N <= {max_tension_N:.4g} N"
+    bad_t = np.flatnonzero((tension <= 0) | (tension > max_tension_N))
+    if len(bad_t):
+        i = int(bad_t[0])
+        why = ("a bench pulls the cable: a row at zero or negative tension carries no stiffness"
+               if tension[i] <= 0 else
+               "the servo's maximum cable tension, stall torque / spool radius")
+        raise ValueError(f"data file {name}: row {i + 2}, column tension_N: {tension[i]:.4g} N; "
+                         f"{t_range} ({why})")
     angles = np.full((n, n_segments), np.nan)
     angles[:, 0] = 0.0
     if all(has_ang):
         angles[:, 1:] = np.column_stack([values[c] for c in ang_cols])
+        if closure_angle_deg is not None:
+            top = (n_segments - 1) * (closure_angle_deg + CLOSED_CUT_MARGIN_DEG)
+            what = (f"every cut closed, {n_segments - 1} x ({closure_angle_deg:.1f} + "
+                    f"{CLOSED_CUT_MARGIN_DEG:g})°")
+        else:
+            top, what = MAX_BENDING_DEG, "a full turn"
+        bad_a = np.argwhere((angles[:, 1:] < 0) | (angles[:, 1:] > top))
+        if len(bad_a):
+            r, j = (int(v) for v in bad_a[0])
+            raise ValueError(
+                f"data file {name}: row {r + 2}, column {ang_cols[j]}: {angles[r, j + 1]:.4g}°; "
+                f"allowed 0 to {top:.1f}° (the cable curls the finger towards its grasping face, "
+                f"at most {what})")
         if closure_angle_deg is not None:
             hinge = np.diff(angles, axis=1)
             closed = hinge > closure_angle_deg + CLOSED_CUT_MARGIN_DEG
@@ -121,6 +170,20 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
                     f"data file {name}: row {r + 2}: hinge B{j + 1}-B{j + 2} at {hinge[r, j]:.1f}°, "
                     f"past the cut's closure angle {closure_angle_deg:.1f}°; the fit needs open "
                     f"cuts, drop rows with closed cuts")
+        # Overall growth: the sign of the covariance of bending (last element) and tension,
+        # i.e. of their least-squares slope; noise may make single steps fall.
+        bend = angles[:, -1]
+        if n >= 2 and np.ptp(tension) > 0:
+            dt = tension - tension.mean()
+            cov = float(np.mean(dt * (bend - bend.mean())))
+            if not cov > 0:
+                with np.errstate(all="ignore"):
+                    slope = cov / float(np.mean(dt * dt))
+                raise ValueError(
+                    f"data file {name}: column {ang_cols[-1]}: the bending does not grow with "
+                    f"tension (least-squares slope {slope:.3g} deg/N over {n} rows); a pull on "
+                    f"the cable bends the finger further, so the slope must be > 0: check the "
+                    f"rows' tensions and angles")
     tip = np.full((n, 2), np.nan)
     if all(has_tip):
         tip[:] = np.column_stack([values["tip_x_m"], values["tip_z_m"]])

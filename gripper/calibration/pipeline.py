@@ -22,6 +22,7 @@ Example:
 from __future__ import annotations
 
 import json
+import math
 import shutil
 import tempfile
 from collections.abc import Callable
@@ -30,7 +31,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from gripper.calibration.calfile import Calibration, design_hash
-from gripper.calibration.fit import FitConfig, FitResult, fit_hinges
+from gripper.calibration.fit import FitConfig, FitResult, check_held_out, fit_hinges, min_fit_levels
 from gripper.calibration.measured import read_measured_csv
 from gripper.calibration.reference import BendingRecord, ReferenceConfig, run_reference
 from gripper.calibration.report import write_report
@@ -64,9 +65,30 @@ def auto_tension_max(p: GripperParams, conv) -> float:
     converged body's average hinge turns by ``AUTO_CLOSURE_FRACTION`` of its closure angle,
     from the extrapolated small-load compliance (bending per newton over the hinge count),
     to three significant figures."""
-    import math
+    return _tension_for_compliance(p, conv.richardson.extrapolated)
 
-    per_hinge = math.radians(conv.richardson.extrapolated) / p.finger.n_hinges  # rad/N
+
+def quick_tension_max(p: GripperParams, cfg: ReferenceConfig) -> float:
+    """Highest tension of a continuum reference run without the convergence study
+    (``calibrate(converge=False)``, ``gripper calibrate --no-converge``) [N]: the same rule as
+    :func:`auto_tension_max` (the average hinge at ``AUTO_CLOSURE_FRACTION`` of its closure
+    angle), from the small-load compliance of the mesh the run uses, as it is (one linear solve,
+    about a second; :func:`gripper.calibration.convergence.linear_compliance`).
+
+    Why: ``ReferenceConfig.tension_max``'s 0.25 N was set for the 0.5.x design (3 mm bridge).
+    The 1.9 mm default bends about 1000 deg/N on the default mesh, so at 0.25 N its hinges
+    would turn about 50° against a 42.7° closure angle: the run stopped at 0.2 N (hinge B4-B5
+    at 45.9°) after some 95 s. The converged run gets its tension from the extrapolated
+    compliance; the quick look now gets it from its own mesh's (0.107 N for the default
+    design), so both bend the finger to the same fraction of closure."""
+    from gripper.calibration.convergence import linear_compliance
+
+    comp = linear_compliance(p, cfg.mesh, clamp_length=cfg.clamp_length)["compliance_deg_per_N"]
+    return _tension_for_compliance(p, comp / cfg.modulus_factor)
+
+
+def _tension_for_compliance(p: GripperParams, compliance_deg_per_N: float) -> float:
+    per_hinge = math.radians(compliance_deg_per_N) / p.finger.n_hinges  # rad/N
     t = AUTO_CLOSURE_FRACTION * math.radians(p.finger.closure_angle_deg) / per_hinge
     return float(f"{t:.3g}")
 
@@ -92,15 +114,23 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
         kind: reference kind, ``"continuum"`` or ``"fmbs"`` (ignored with ``data``).
         fmbs: :class:`~gripper.calibration.fmbs.FmbsConfig` for ``kind="fmbs"``.
         converge: solve the continuum reference's mesh convergence first and run it with the
-            stiffness correction (``False``: the mesh as it is, e.g. for quick looks).
+            stiffness correction (``False``: the mesh as it is, e.g. for quick looks). Without
+            ``reference``, the continuum run's highest tension comes from the compliance the run
+            will have: :func:`auto_tension_max` (converged) or :func:`quick_tension_max` (the
+            mesh as it is), never ``ReferenceConfig.tension_max``'s 0.25 N, which closes the
+            default design's cuts.
 
     Files in ``out_dir``: ``calibration.json``, ``report.png``, ``errors.csv`` and, for a
     reference run, ``reference.json`` (the record) and ``convergence.json`` (the mesh study).
     Everything is written into a temporary folder first and moved in at the end, so a refused
     input or a failed run leaves ``out_dir`` as it was.
 
+    Fitted values that end at their bounds are warnings (``metrics["warnings"]`` of the
+    calibration, and ``on_progress("warning: ...")``).
+
     Raises:
-        ValueError: bad parameters, settings, reference kind or data file.
+        ValueError: bad parameters, settings, reference kind, data file or held-out levels
+            (checked before the convergence study and the reference run).
         SimulationUnstable: the reference run went unstable.
     """
     if kind not in REFERENCE_KINDS:
@@ -113,23 +143,31 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
     ref_cfg = (reference or ReferenceConfig()).validate()
     if fmbs is not None:
         fmbs = fmbs.validate()
+    # Every input is checked here, before the slow runs and before any file is written.
     if data is not None:
-        fit_cfg = fit or FitConfig(fit_damping=False)
+        fit_cfg = (fit or FitConfig(fit_damping=False)).validate()
         if fit_cfg.fit_damping:
             raise ValueError("fit.fit_damping: bench data are static points; damping needs the "
                              "reference's transient")
         record = read_measured_csv(data, p.finger.n_segments, min_points=p.finger.n_hinges,
-                                   closure_angle_deg=p.finger.closure_angle_deg)
+                                   closure_angle_deg=p.finger.closure_angle_deg,
+                                   max_tension_N=p.servo.max_cable_tension)
+        check_held_out(fit_cfg.held_out, len(record.static),
+                       min_fit_levels=min_fit_levels(record, p.finger.n_hinges))
         source = "measured"
         settings: dict[str, Any] = {"data": str(data)}
         say(f"read {len(record.static)} static points from {data}")
+    else:
+        # the levels are known before the run: ReferenceConfig.n_levels (each level of a
+        # reference record has every angle and the tip, enough residuals for a static fit)
+        fit_cfg = (fit or FitConfig()).validate()
+        check_held_out(fit_cfg.held_out, ref_cfg.n_levels, min_fit_levels=1)
     created = [d for d in (out.parent, *out.parent.parents) if not d.exists()]
     out.parent.mkdir(parents=True, exist_ok=True)
     try:
         with tempfile.TemporaryDirectory(dir=out.parent, prefix=f".{out.name}.") as tmp_name:
             tmp = Path(tmp_name)
             if data is None:
-                fit_cfg = fit or FitConfig()
                 settings = {"kind": kind, "reference": ref_cfg.to_dict(), "fit": asdict(fit_cfg)}
                 if kind == "fmbs":
                     from gripper.calibration.fmbs import FmbsConfig
@@ -155,6 +193,9 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
                         "default_error": conv.default_error,
                         "order": conv.richardson.order, "gci_fine": conv.richardson.gci_fine,
                         "extrapolated_compliance_deg_per_N": conv.richardson.extrapolated}
+                elif reference is None and kind == "continuum":
+                    # the mesh as it is: its own compliance sets the tension (quick_tension_max)
+                    run_cfg = replace(run_cfg, tension_max=quick_tension_max(p, run_cfg))
                 if kind == "fmbs":
                     from gripper.calibration.fmbs import fmbs_tension_max, run_fmbs
 
@@ -165,7 +206,8 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
                         f"{run_cfg.tension_max:.3g} N) ...")
                     record = run_fmbs(p, run_cfg, fmbs)
                 else:
-                    say("continuum reference run (flex finger, several minutes) ...")
+                    say(f"continuum reference run (flex finger, {run_cfg.tension_max:.3g} N, "
+                        f"several minutes) ...")
                     record = run_reference(p, run_cfg)
                 source = kind
                 settings["run"] = {"modulus_factor": run_cfg.modulus_factor,
@@ -176,6 +218,8 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
             result = fit_hinges(record, p, fit_cfg)
             metrics = dict(result.metrics, fit_wall_time_s=result.wall_time_s,
                            fit_iterations=result.iterations)
+            for line in metrics.get("warnings", []):  # also in calibration.json's metrics
+                say(f"warning: {line}")
             if data is None:
                 metrics["reference_wall_time_s"] = record.wall_time_s
             settings["settings_hash"] = settings_hash({k: v for k, v in settings.items()
@@ -234,5 +278,5 @@ def write_default_calibration(on_progress=None) -> Calibration:
     return cal
 
 
-__all__ = ["REFERENCE_KINDS", "calibrate", "default_settings", "settings_hash",
-           "stale_reasons", "write_default_calibration"]
+__all__ = ["REFERENCE_KINDS", "auto_tension_max", "calibrate", "default_settings", "quick_tension_max",
+           "settings_hash", "stale_reasons", "write_default_calibration"]

@@ -18,6 +18,18 @@ import sys
 
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
 from gripper.bench.execution import check_scheduler
+from gripper.cli.inputs import (
+    MAX_SIMULATED_S,
+    PIXELS,
+    TRIALS_MAX,
+    WORKERS_MAX,
+    OneLineParser,
+    field_option,
+    names,
+    number,
+    numbers,
+    seed_option,
+)
 from gripper.core.atomic import check_output_dir, check_output_file
 from gripper.core.params import GripperParams, parameter_help
 from gripper.experiments.protocol import (
@@ -37,9 +49,21 @@ from gripper.experiments.protocol import (
 EXIT_BAD_INPUT = 2
 EXIT_UNSTABLE = 3
 EXIT_BROKEN_PIPE = 1
+EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report a command ended by Ctrl-C
 
 
-def _params(args) -> GripperParams:
+def _params(args, *, simulates: bool = True) -> GripperParams:
+    """The parameters the options give; ``simulates``: also check, before any work and any file,
+    that the design can be stepped at all (:func:`gripper.sim.preflight.check_design`)."""
+    p = _read_params(args)
+    if simulates:
+        from gripper.sim.preflight import check_design
+
+        check_design(p, "--params" if args.params else "--calibration")
+    return p
+
+
+def _read_params(args) -> GripperParams:
     p = GripperParams.load(args.params) if args.params else GripperParams().validate()
     springs = getattr(args, "springs", "calibrated")
     if springs != "calibrated":
@@ -78,7 +102,7 @@ def _cmd_bend(args) -> int:
           f"wall {res.wall_time_s:.3f} s, {res.warnings} MuJoCo warnings)")
     print(f"{'r':>7} {'tension N':>10} {'bend deg':>9}  tip x,y,z [mm]")
     stride = max(1, len(res.r) // 10)
-    for i in list(range(0, len(res.r), stride)) + [len(res.r) - 1]:
+    for i in sorted({*range(0, len(res.r), stride), len(res.r) - 1}):
         tip = ", ".join(f"{v * 1e3:6.1f}" for v in res.tip_xyz_m[i])
         print(f"{res.r[i]:7.3f} {res.tension_N[i]:10.3f} {res.bending_angle_deg[i]:9.2f}  {tip}")
     return 0
@@ -98,7 +122,7 @@ def _cmd_servo(args) -> int:
 
 def _cmd_params(args) -> int:
     check_output_file(args.out, "--out", (".json", ".toml"))
-    path = _params(args).save(args.out)
+    path = _params(args, simulates=False).save(args.out)
     print(f"wrote {path}")
     return 0
 
@@ -106,49 +130,54 @@ def _cmd_params(args) -> int:
 def _cmd_write_models(args) -> int:
     from gripper.model.menagerie import REPO_MODELS, write_model_files
 
-    out = check_output_dir(args.out or REPO_MODELS)
-    for path in write_model_files(out, _params(args)):
+    out = check_output_dir(args.out or REPO_MODELS,
+                           files=("soft_gripper.xml", "scene.xml", "README.md"))
+    for path in write_model_files(out, _params(args, simulates=False)):
         print(f"wrote {path}")
     return 0
 
 
 def _cmd_check(args) -> int:
+    from gripper.core.timesteps import check_step_budget
     from gripper.experiments.smoke import random_control_rollout
 
-    res = random_control_rollout(_params(args), duration=args.duration, seed=args.seed)
+    p = _params(args)
+    check_step_budget(args.duration, p.sim.timestep, "--duration")
+    res = random_control_rollout(p, duration=args.duration, seed=args.seed)
     print(f"{res['steps']} steps, {res['sim_time_s']:.2f} s simulated in {res['wall_time_s']:.2f} "
           f"s wall ({res['realtime_factor']:.1f}× real time), MuJoCo warnings: 0, state finite")
     return 0
 
 
-def _csv_objects(text: str) -> tuple[str, ...]:
-    names = tuple(n.strip() for n in text.split(",") if n.strip())
-    if not names:
-        raise ValueError("--objects: give at least one object name")
-    return names
+def _objects(text: str, flag: str = "--objects") -> tuple[str, ...]:
+    """Object specs, each resolved once here so a bad one is refused before any work."""
+    from gripper.objects.library import get_object
+
+    specs = names(text, flag)
+    for spec in specs:
+        try:
+            get_object(spec)
+        except ValueError as e:
+            text = str(e)
+            raise ValueError(f"{flag}: {text.removeprefix('objects: ')}") from None
+    return specs
 
 
 def _check_runner(args) -> None:
-    """Refuse a bad --workers or an unreachable --scheduler before any work."""
-    if args.workers < 1:
-        raise ValueError(f"--workers: must be >= 1, got {args.workers}")
+    """Refuse an unreachable --scheduler before any work (--workers is bounded by its type)."""
     check_scheduler(args.scheduler)
 
 
 def _cmd_bench(args) -> int:
-    from gripper.bench.benchmark import BenchConfig, format_table, run_benchmark
+    from gripper.bench.benchmark import RUN_FILES, BenchConfig, format_table, run_benchmark
 
-    if args.trials < 1:
-        raise ValueError(f"--trials: must be >= 1, got {args.trials}")
-    check_output_dir(args.out)
+    check_output_dir(args.out, files=RUN_FILES)
     _check_runner(args)
     proto, noise = _protocol_and_noise(args)
-    cfg = BenchConfig(objects=_csv_objects(args.objects), trials=args.trials, seed=args.seed,
+    cfg = BenchConfig(objects=_objects(args.objects), trials=args.trials, seed=args.seed,
                       params=_params(args), protocol=proto, noise=noise).validate()
     if args.plot:
-        from gripper.render.figures import check_png_path
-
-        check_png_path(args.plot, "--plot")  # before the run: a bad path must not cost a benchmark
+        check_output_file(args.plot, "--plot", (".png",))  # before the run: a bad path must not cost one
     summary = run_benchmark(cfg, args.out, workers=args.workers, scheduler=args.scheduler,
                             progress=not args.no_progress)
     print(format_table(summary))
@@ -163,13 +192,6 @@ def _cmd_bench(args) -> int:
 
 
 def _protocol_and_noise(args):
-    from gripper.experiments.protocol import (
-    GraspProtocol,
-    TrialNoise,
-)
-
-    if args.noise < 0:
-        raise ValueError(f"--noise: must be >= 0 m, got {args.noise}")
     proto = GraspProtocol(close_command_scale=args.close_scale, release=args.release, policy=args.policy,
                           grip_tension=args.grip_tension, approach=args.approach, grasp=args.grasp,
                           centre=not args.no_centre).validate()
@@ -179,10 +201,13 @@ def _protocol_and_noise(args):
 
 def _cmd_video(args) -> int:
     from gripper.objects.library import get_object
-    from gripper.render.video import record_trial_video
+    from gripper.render.video import VIDEO_SUFFIXES, record_trial_video
 
+    check_output_file(args.out, "--out", VIDEO_SUFFIXES)
+    if args.still:
+        check_output_file(args.still, "--still", (".png",))
     proto, noise = _protocol_and_noise(args)
-    obj = get_object(args.object)
+    obj = get_object(_objects(args.object, "--object")[0])
     res = record_trial_video(obj, args.out, seed=args.seed, index=args.index, params=_params(args),
                              protocol=proto, noise=noise, width=args.width, height=args.height, fps=args.fps,
                              camera=args.camera, overlay=not args.no_overlay, still=args.still,
@@ -219,25 +244,29 @@ def _hyperparam_overrides(items: list[str], flag: str = "--set") -> dict:
 def _cmd_train(args) -> int:
     from gripper.rl.config import TrainConfig
 
-    cfg = TrainConfig(algo=args.algo, objects=tuple(o.strip() for o in args.objects.split(",") if o.strip()),
+    cfg = TrainConfig(algo=args.algo, objects=_objects(args.objects),
                       action_mode=args.action_mode, xy_actions=args.xy, steps=args.steps, seed=args.seed,
                       n_envs=args.n_envs, chunk_steps=args.chunk_steps, eval_episodes=args.eval_episodes,
                       hyperparams=_hyperparam_overrides(args.set),
                       reward_weights=_hyperparam_overrides(args.reward_weight, "--reward-weight")).validate()
-    check_output_dir(args.out)
-    if args.video:
-        from gripper.render.video import check_output_path
+    from gripper.rl.training import RUN_FILES as TRAIN_FILES
 
-        check_output_path(args.video)
+    check_output_dir(args.out, files=TRAIN_FILES)
+    if args.video:
+        from gripper.render.video import VIDEO_SUFFIXES
+
+        check_output_file(args.video, "--video", VIDEO_SUFFIXES)
     _needs_rl("train")
     from gripper.rl.training import train
 
     def show(row):
         per = " ".join(f"{k[5:]} {v:.2f}" for k, v in row.items() if k.startswith("eval_") and k not in (
             "eval_success", "eval_return"))
+        # no training episode has ended yet: nothing to average (the row holds NaN)
+        train = (f"success {row['train_success']:.2f}, return {row['train_return']:7.1f}"
+                 if row["train_episodes"] else "no episode ended yet")
         print(f"{row['steps']:>9} steps {row['wall_s']:>8.0f} s  train: {row['train_episodes']:>4} episodes, "
-              f"success {row['train_success']:.2f}, return {row['train_return']:7.1f}  "
-              f"eval: success {row['eval_success']:.2f} ({per})", flush=True)
+              f"{train}  eval: success {row['eval_success']:.2f} ({per})", flush=True)
 
     rows = train(cfg, args.out, resume=args.resume, on_progress=show)
     print(f"wrote {args.out}/policy.zip and progress.csv ({len(rows)} evaluations)")
@@ -251,16 +280,17 @@ def _play(run, out, seed, width, height, camera) -> int:
     from gripper.rl.training import load_policy
 
     cfg, act = load_policy(run)
-    res = record_policy_video(act, cfg.env_kwargs(), out, seed=seed, width=width, height=height, camera=camera)
+    res = record_policy_video(act, cfg.env_kwargs(), out, seed=seed, width=width, height=height, camera=camera,
+                              on_progress=lambda msg: print(msg, file=sys.stderr, flush=True))
     print(f"{res['object']}, seed {seed}: {'held' if res['success'] else 'not held'}; wrote {res['video']} "
           f"({res['frames']} frames at {res['fps']:g} fps)")
     return 0
 
 
 def _cmd_play(args) -> int:
-    from gripper.render.video import check_output_path
+    from gripper.render.video import VIDEO_SUFFIXES
 
-    check_output_path(args.out)
+    check_output_file(args.out, "--out", VIDEO_SUFFIXES)
     _needs_rl("play")
     return _play(args.run, args.out, args.seed, args.width, args.height, args.camera)
 
@@ -292,8 +322,10 @@ def _cmd_calibrate(args) -> int:
         print(f"wrote gripper/data/soft_gripper/calibration.json: stiffness "
               f"{', '.join(f'{k:.4g}' for k in cal.stiffness)} N·m/rad")
         return 0
-    check_output_dir(args.out)
-    p = _params(args)
+    from gripper.calibration.pipeline import DEFAULT_FILES
+
+    check_output_dir(args.out, files=DEFAULT_FILES)
+    p = _params(args, simulates=False)  # the calibration runs its own reference; a bad design fails it
     ref = None
     if args.mesh_scale != 1 or args.tension_max is not None or args.levels != 5:
         ref = ReferenceConfig(mesh=MeshResolution(scale=args.mesh_scale),
@@ -335,9 +367,9 @@ def _cmd_calibrate(args) -> int:
 
 
 def _cmd_study(args) -> int:
-    from gripper.studies.study import load_study, run_study
+    from gripper.studies.study import RUN_FILES, load_study, run_study
 
-    check_output_dir(args.out)
+    check_output_dir(args.out, files=RUN_FILES)
     study = load_study(args.file)
     _check_runner(args)
     records = run_study(study, args.out, workers=args.workers, scheduler=args.scheduler,
@@ -349,29 +381,18 @@ def _cmd_study(args) -> int:
     return 0
 
 
-def _csv_floats(text: str, flag: str) -> tuple[float, ...]:
-    try:
-        vals = tuple(float(v) for v in text.split(",") if v.strip())
-    except ValueError:
-        raise ValueError(f"{flag}: expected comma-separated numbers, got {text!r}") from None
-    if not vals:
-        raise ValueError(f"{flag}: give at least one number")
-    return vals
-
-
 def _cmd_pullout(args) -> int:
     from gripper.experiments.protocol import GraspProtocol
     from gripper.experiments.pullout import run_pullout
 
-    objects = _csv_objects(args.objects)
+    objects = _objects(args.objects)
     policy = args.policy
     base = GraspProtocol(policy=policy)
-    grips = _csv_floats(args.grip_tension, "--grip-tension") if policy == "controller" else (base.grip_tension,)
+    grips = numbers(args.grip_tension, "--grip-tension", lo=0, lo_open=True) if policy == "controller" else (
+        base.grip_tension,)
     protos = [base.replace(grip_tension=g) for g in grips]
     if args.plot:
-        from gripper.render.figures import check_png_path
-
-        check_png_path(args.plot, "--plot")
+        check_output_file(args.plot, "--plot", (".png",))
     params = _params(args)
     results = []
     for name in objects:
@@ -391,10 +412,10 @@ def _cmd_pullout(args) -> int:
 
 
 def _cmd_envelope(args) -> int:
-    from gripper.studies.envelope import load_envelope, run_envelope
+    from gripper.studies.envelope import RUN_FILES, load_envelope, run_envelope
 
-    check_output_dir(args.out)
-    lists = {key: (_csv_objects(v) if key == "shapes" else _csv_floats(v, f"--{key}"))
+    check_output_dir(args.out, files=RUN_FILES)
+    lists = {key: (names(v, "--shapes") if key == "shapes" else numbers(v, f"--{key}", lo=0, lo_open=True))
              for key in ("shapes", "sizes", "masses", "frictions") if (v := getattr(args, key)) is not None}
     env = load_envelope(args.file, trials=args.trials, seed=args.seed, grip_tension=args.grip_tension, **lists)
     _check_runner(args)
@@ -416,8 +437,9 @@ def _cmd_envelope(args) -> int:
 def _cmd_crush(args) -> int:
     from gripper.experiments.crush import crush_test
 
-    for name in _csv_objects(args.objects):
-        res = crush_test(name, args.depth, speed=args.speed, hold_s=args.hold, params=_params(args))
+    params = _params(args)
+    for name in _objects(args.objects):
+        res = crush_test(name, args.depth, speed=args.speed, hold_s=args.hold, params=params)
         if args.json:
             print(json.dumps(res))
             continue
@@ -428,30 +450,35 @@ def _cmd_crush(args) -> int:
     return 0
 
 
+def _version_text() -> str:
+    from importlib.metadata import version
+
+    import mujoco
+
+    return f"gripper {version('gripper')} (MuJoCo {mujoco.__version__})"
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="gripper",
         description="Simulate a four-finger cable-driven soft gripper in MuJoCo. "
                     "All quantities in SI units unless a name says otherwise.")
+    parser.add_argument("--version", action="version", version=_version_text())
     sub = parser.add_subparsers(dest="command", required=True)
 
     def with_protocol(p):
-        noise, proto = TrialNoise(), GraspProtocol()
-        p.add_argument("--noise", type=float, default=noise.xy,
-                       help="x/y placement noise half-range [m] (default %(default)s)")
-        p.add_argument("--mass-noise", type=float, default=noise.mass_frac,
-                       help="mass noise fraction, e.g. 0.2 (default %(default)s)")
-        p.add_argument("--friction-noise", type=float, default=noise.friction_frac,
-                       help="friction noise fraction (default %(default)s)")
+        proto = GraspProtocol()
+        field_option(p, "--noise", TrialNoise, "xy", "x/y placement noise half-range [m]")
+        field_option(p, "--mass-noise", TrialNoise, "mass_frac", "mass noise fraction, e.g. 0.2")
+        field_option(p, "--friction-noise", TrialNoise, "friction_frac", "friction noise fraction")
         p.add_argument("--policy", choices=POLICIES, default=proto.policy,
                        help="controller: close each finger until its cable tension reaches --grip-tension, "
                             "knowing nothing of the object; per_object: each object's own closing command "
                             "(default %(default)s)")
-        p.add_argument("--grip-tension", type=float, default=proto.grip_tension, metavar="N",
-                       help="the controller's grip set-point: cable tension per finger [N] (default %(default)s)")
-        p.add_argument("--close-scale", type=float, default=proto.close_command_scale,
-                       help="per_object: multiplier on each object's closing command (default %(default)s; "
-                            ">1 squeezes harder)")
+        field_option(p, "--grip-tension", GraspProtocol, "grip_tension",
+                     "the controller's grip set-point: cable tension per finger [N]", metavar="N")
+        field_option(p, "--close-scale", GraspProtocol, "close_command_scale",
+                     "per_object: multiplier on each object's closing command, >1 squeezes harder")
         p.add_argument("--release", action="store_true", help="open the fingers at the end of each trial")
         p.add_argument("--approach", choices=APPROACHES, default=proto.approach,
                        help="sensed: the palm camera finds the object; catalogue: the object's size, centred "
@@ -464,8 +491,7 @@ def build_parser() -> argparse.ArgumentParser:
         return p
 
     def with_runner(p):
-        p.add_argument("--workers", type=int, default=DEFAULT_WORKERS,
-                       help="local worker processes (default %(default)s)")
+        number(p, "--workers", int, lo=1, hi=WORKERS_MAX, default=DEFAULT_WORKERS, help="local worker processes")
         p.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786")
         p.add_argument("--no-progress", action="store_true", help="no progress bar")
         return p
@@ -486,7 +512,6 @@ def build_parser() -> argparse.ArgumentParser:
                             "radian (paper_per_radian), for comparison")
         return p
 
-    bend = BendingConfig()
     b = with_params(sub.add_parser(
         "bend", help="paper 000's bending test of one finger",
         description="Ramp the cable shortening rate r from 0 to r_max over the run (dynamic) or "
@@ -495,18 +520,23 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--json", action="store_true",
                    help="print a JSON object with arrays r, tension_N, joint_angles_deg, "
                         "bending_angle_deg, tip_xyz_m")
-    b.add_argument("--mode", choices=("dynamic", "quasi_static"), default=bend.mode)
+    b.add_argument("--mode", choices=("dynamic", "quasi_static"), default=BendingConfig().mode,
+                   help="dynamic: one ramp, as paper 000 ran it; quasi_static: each set-point held until at rest "
+                        "(default %(default)s)")
     b.add_argument("--figure", metavar="FILE.png",
                    help="also write a PNG: side-view montage of the finger at six shortening rates "
                         "and the bending-angle curve")
-    b.add_argument("--r-max", type=float, default=bend.r_max, help="final shortening rate (default %(default)s)")
-    b.add_argument("--duration", type=float, default=bend.duration, help="ramp time [s] (default %(default)s)")
-    b.add_argument("--timestep", type=float, default=bend.timestep,
-                   help="step [s] (default %(default)s, paper 000 §IV)")
-    b.add_argument("--points", type=int, default=bend.n_points, help="samples or set-points (default %(default)s)")
+    field_option(b, "--r-max", BendingConfig, "r_max", "final shortening rate")
+    field_option(b, "--duration", BendingConfig, "duration", "ramp time [s]")
+    field_option(b, "--timestep", BendingConfig, "timestep", "step [s], paper 000 §IV")
+    field_option(b, "--points", BendingConfig, "n_points", "samples or set-points")
     b.set_defaults(func=_cmd_bend)
 
-    s = with_params(sub.add_parser("servo", help="servo model against its datasheet"))
+    s = with_params(sub.add_parser(
+        "servo", help="servo model against its datasheet",
+        description="Measure the servo model (the gripper's dcmotor actuator and its position loop) as "
+                    "a bench would: no-load speed, stall torque, and the cable tension they give, each "
+                    "against the datasheet of the --params servo preset."))
     s.set_defaults(func=_cmd_servo)
 
     p = with_params(sub.add_parser(
@@ -518,13 +548,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", required=True, metavar="FILE", help=".json or .toml")
     p.set_defaults(func=_cmd_params)
 
-    w = with_params(sub.add_parser("write-models", help="regenerate gripper/data/soft_gripper"))
+    w = with_params(sub.add_parser(
+        "write-models", help="regenerate gripper/data/soft_gripper",
+        description="Write the gripper's MJCF (soft_gripper.xml, scene.xml) for the parameters, and "
+                    "refresh the model README's parameter table, into --out."))
     w.add_argument("--out", metavar="DIR", help="output folder (default gripper/data/soft_gripper)")
     w.set_defaults(func=_cmd_write_models)
 
-    c = with_params(sub.add_parser("check", help="step the scene under random servo commands"))
-    c.add_argument("--duration", type=float, default=2.0, help="simulated time [s]")
-    c.add_argument("--seed", type=int, default=0)
+    c = with_params(sub.add_parser(
+        "check", help="step the scene under random servo commands",
+        description="A smoke test of a design: step the gripper scene with every actuator given a "
+                    "uniform random command over its range, renewed every 0.1 s; fail on any MuJoCo "
+                    "warning or non-finite state."))
+    number(c, "--duration", float, lo=0, lo_open=True, hi=MAX_SIMULATED_S, default=2.0, help="simulated time [s]")
+    seed_option(c, help="seed of the random commands", default=0)
     c.set_defaults(func=_cmd_check)
 
     from gripper.objects.library import DEFAULT_OBJECTS
@@ -535,8 +572,8 @@ def build_parser() -> argparse.ArgumentParser:
                     "summary.csv and summary.json into --out. Rerunning into the same folder resumes. "
                     "Objects: " + ", ".join(DEFAULT_OBJECTS) + ", or mesh:PATH (STL/OBJ/PLY, metres)."))
     bn.add_argument("--objects", default=",".join(DEFAULT_OBJECTS), help="comma-separated names")
-    bn.add_argument("--trials", type=int, default=DEFAULT_TRIALS, help="trials per object (default %(default)s)")
-    bn.add_argument("--seed", type=int, default=0, help="base seed (default 0)")
+    number(bn, "--trials", int, lo=1, hi=TRIALS_MAX, default=DEFAULT_TRIALS, help="trials per object")
+    seed_option(bn, default=0)
     bn.add_argument("--out", default="runs/bench", metavar="DIR", help="output folder (default runs/bench)")
     with_runner(with_protocol(bn))
     bn.add_argument("--plot", metavar="FILE.png", help="also write the success rates with Wilson 95 %% intervals")
@@ -549,13 +586,13 @@ def build_parser() -> argparse.ArgumentParser:
                     "state at the video rate and render it offscreen with MuJoCo (MUJOCO_GL=egl by "
                     "default), then write H.264 MP4 or GIF with mediapy.")))
     v.add_argument("--object", required=True, help="object name (" + ", ".join(DEFAULT_OBJECTS) + ") or mesh:PATH")
-    v.add_argument("--seed", type=int, default=0, help="base seed (default 0)")
-    v.add_argument("--index", type=int, default=0, help="trial index within the seed (default 0)")
+    seed_option(v, default=0)
+    number(v, "--index", int, lo=0, hi=TRIALS_MAX - 1, default=0, help="trial index within the seed")
     v.add_argument("--out", required=True, metavar="FILE", help="output .mp4 or .gif")
     v.add_argument("--camera", default="front", help="camera preset: " + ", ".join(CAMERAS) + " (default front)")
-    v.add_argument("--width", type=int, default=640, help="pixels (default 640)")
-    v.add_argument("--height", type=int, default=480, help="pixels (default 480)")
-    v.add_argument("--fps", type=float, default=30.0, help="frames per second (default 30)")
+    number(v, "--width", int, lo=PIXELS[0], hi=PIXELS[1], default=640, help="pixels")
+    number(v, "--height", int, lo=PIXELS[0], hi=PIXELS[1], default=480, help="pixels")
+    number(v, "--fps", float, lo=1, hi=240, default=30.0, help="frames per second")
     v.add_argument("--no-overlay", action="store_true", help="no text overlay (phase, time, cable tensions)")
     v.add_argument("--still", metavar="FILE.png", help="also write the first frame of the hold phase as PNG")
     v.set_defaults(func=_cmd_video)
@@ -567,7 +604,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "plot per parameter and recommendations.md into --out. Rerunning resumes.")
     st.add_argument("file", metavar="FILE.toml",
                     help="a study file, or a shipped study by name: one_at_a_time, latin_hypercube")
-    st.add_argument("--out", required=True, metavar="DIR")
+    st.add_argument("--out", required=True, metavar="DIR", help="run folder (new, or the study's own to resume)")
     with_runner(st)
     st.set_defaults(func=_cmd_study)
 
@@ -579,15 +616,15 @@ def build_parser() -> argparse.ArgumentParser:
                     "Rerunning resumes.")
     ev.add_argument("file", nargs="?", default="default", metavar="FILE.toml",
                     help="an envelope file, or the shipped one by name: default (the default)")
-    ev.add_argument("--out", required=True, metavar="DIR")
+    ev.add_argument("--out", required=True, metavar="DIR", help="run folder (new, or the envelope's own to resume)")
     ev.add_argument("--shapes", metavar="S[,S...]", help="sphere, cylinder, box (default: the file's)")
     ev.add_argument("--sizes", metavar="M[,M...]", help="widths [m], sphere: diameter (default: the file's)")
     ev.add_argument("--masses", metavar="KG[,KG...]", help="masses [kg] (default: the file's)")
     ev.add_argument("--frictions", metavar="MU[,MU...]", help="friction coefficients (default: the file's)")
-    ev.add_argument("--trials", type=int, help="trials per point (default: the file's)")
-    ev.add_argument("--seed", type=int, help="base seed (default: the file's)")
-    ev.add_argument("--grip-tension", type=float, metavar="N", help="set-point [N] (default: the file's, "
-                    "else the protocol's)")
+    number(ev, "--trials", int, lo=1, hi=TRIALS_MAX, help="trials per point; default: the file's")
+    seed_option(ev, help="base seed; default: the file's")
+    field_option(ev, "--grip-tension", GraspProtocol, "grip_tension", "set-point [N]; default: the file's, "
+                 "else the protocol's", metavar="N", default=None)
     with_runner(ev)
     ev.set_defaults(func=_cmd_envelope)
 
@@ -615,12 +652,12 @@ def build_parser() -> argparse.ArgumentParser:
                      help="regenerate the committed stiffness surrogate of the design studies "
                           "(gripper/data/studies/stiffness_surrogate.json: six convergence studies "
                           "and 41 linear solves, about 25 minutes on 2 cores)")
-    cal.add_argument("--mesh-scale", type=int, default=1,
-                     help="reference mesh refinement: 1 default, 2 halves every cell (slow)")
-    cal.add_argument("--tension-max", type=float, default=None,
-                     help="highest cable tension of the reference run [N] (default 0.25; fmbs: "
-                          "scaled to the reading's spring)")
-    cal.add_argument("--levels", type=int, default=5, help="tension levels (default 5)")
+    number(cal, "--mesh-scale", int, lo=1, hi=4, default=1,
+           help="reference mesh refinement: 1, 2 halves every cell (slow), up to 4")
+    number(cal, "--tension-max", float, lo=0, lo_open=True, hi=10.0,
+           help="highest cable tension of the reference run [N]; default: the design's own (fmbs: "
+                "scaled to the reading's spring)")
+    number(cal, "--levels", int, lo=2, hi=50, default=5, help="tension levels")
     cal.add_argument("--held-out", default="2",
                      help="comma-separated static points left out of the fit (default 2)")
     cal.set_defaults(func=_cmd_calibrate)
@@ -635,8 +672,8 @@ def build_parser() -> argparse.ArgumentParser:
     po.add_argument("--grip-tension", default=str(GraspProtocol().grip_tension), metavar="N[,N...]",
                     help="controller set-points [N], comma-separated (default %(default)s)")
     po.add_argument("--plot", metavar="FILE.png", help="also write holding force against set-point")
-    po.add_argument("--rate", type=float, default=PULL_RATE, help="pull ramp [N/s] (default %(default)s)")
-    po.add_argument("--max-force", type=float, default=PULL_MAX, help="largest pull [N] (default %(default)s)")
+    number(po, "--rate", float, lo=0, lo_open=True, hi=1000, default=PULL_RATE, help="pull ramp [N/s]")
+    number(po, "--max-force", float, lo=0, lo_open=True, hi=1000, default=PULL_MAX, help="largest pull [N]")
     po.set_defaults(func=_cmd_pullout)
 
     cr = with_params(sub.add_parser(
@@ -645,10 +682,10 @@ def build_parser() -> argparse.ArgumentParser:
                     "--speed, holds --hold seconds and lifts off; prints the object's damage measure "
                     "(balloon/bag: peak edge strain; paper box: permanent dent; rigid: plate force)."))
     cr.add_argument("--objects", default="balloon,paper_box", help="comma-separated names")
-    cr.add_argument("--depth", type=float, default=CRUSH_DEPTH,
-                    help="press depth below the object's top [m] (default %(default)s)")
-    cr.add_argument("--speed", type=float, default=CRUSH_SPEED, help="plate speed [m/s] (default %(default)s)")
-    cr.add_argument("--hold", type=float, default=CRUSH_HOLD_S, help="hold time at depth [s] (default %(default)s)")
+    number(cr, "--depth", float, lo=0, lo_open=True, hi=0.2, default=CRUSH_DEPTH,
+           help="press depth below the object's top [m]")
+    number(cr, "--speed", float, lo=0, lo_open=True, hi=1.0, default=CRUSH_SPEED, help="plate speed [m/s]")
+    number(cr, "--hold", float, lo=0, hi=60, default=CRUSH_HOLD_S, help="hold time at depth [s]")
     cr.add_argument("--json", action="store_true", help="one JSON object per line")
     cr.set_defaults(func=_cmd_crush)
 
@@ -662,17 +699,20 @@ def build_parser() -> argparse.ArgumentParser:
                     "--chunk-steps it evaluates the deterministic policy on --eval-episodes unseen seeds, "
                     "appends a row to progress.csv and writes a checkpoint; --resume continues from the "
                     "latest one, bitwise as if never stopped. Writes policy.zip at the end.")
-    tr.add_argument("--algo", choices=("ppo", "sac"), default=tc.algo)
+    tr.add_argument("--algo", choices=("ppo", "sac"), default=tc.algo,
+                    help="PPO (on-policy) or SAC (off-policy) (default %(default)s)")
     tr.add_argument("--objects", default=",".join(tc.objects), help="comma-separated names (default %(default)s)")
-    tr.add_argument("--action-mode", choices=("synergy", "fingers"), default=tc.action_mode)
+    tr.add_argument("--action-mode", choices=("synergy", "fingers"), default=tc.action_mode,
+                    help="synergy: one closing command for all fingers; fingers: one per finger "
+                         "(default %(default)s)")
     tr.add_argument("--xy", action="store_true", help="add the palm's x/y velocity actions")
-    tr.add_argument("--steps", type=int, default=tc.steps, help="environment steps (default %(default)s)")
-    tr.add_argument("--seed", type=int, default=tc.seed, help="seed (default %(default)s)")
-    tr.add_argument("--n-envs", type=int, default=tc.n_envs, help="environments (default %(default)s)")
-    tr.add_argument("--chunk-steps", type=int, default=tc.chunk_steps,
-                    help="steps between evaluations and checkpoints (default %(default)s)")
-    tr.add_argument("--eval-episodes", type=int, default=tc.eval_episodes,
-                    help=f"evaluation episodes, seeds from {EVAL_SEED} on (default %(default)s)")
+    number(tr, "--steps", int, lo=1, hi=10**9, default=tc.steps, help="environment steps")
+    seed_option(tr, help="seed", default=tc.seed)
+    number(tr, "--n-envs", int, lo=1, hi=WORKERS_MAX, default=tc.n_envs, help="environments")
+    number(tr, "--chunk-steps", int, lo=1, hi=10**9, default=tc.chunk_steps,
+           help="steps between evaluations and checkpoints")
+    number(tr, "--eval-episodes", int, lo=1, hi=TRIALS_MAX, default=tc.eval_episodes,
+           help=f"evaluation episodes, seeds from {EVAL_SEED} on")
     tr.add_argument("--set", action="append", metavar="KEY=VALUE",
                     help="override a hyper-parameter, e.g. --set n_epochs=5 (repeatable)")
     tr.add_argument("--reward-weight", action="append", metavar="TERM=W",
@@ -680,7 +720,7 @@ def build_parser() -> argparse.ArgumentParser:
     tr.add_argument("--out", required=True, metavar="DIR", help="run folder")
     tr.add_argument("--resume", action="store_true", help="continue the run in --out from its latest checkpoint")
     tr.add_argument("--video", metavar="FILE.mp4", help="also write a video of the final policy")
-    tr.add_argument("--video-seed", type=int, default=EVAL_SEED, help="the video's episode seed (default %(default)s)")
+    seed_option(tr, "--video-seed", help="the video's episode seed", default=EVAL_SEED)
     tr.set_defaults(func=_cmd_train)
 
     pl = sub.add_parser("play", help="video of a trained policy's episode (needs the rl extra)",
@@ -688,10 +728,10 @@ def build_parser() -> argparse.ArgumentParser:
                                     "write its video (H.264 MP4 or GIF).")
     pl.add_argument("--run", required=True, metavar="DIR", help="run folder of 'gripper train'")
     pl.add_argument("--out", required=True, metavar="FILE", help="output .mp4 or .gif")
-    pl.add_argument("--seed", type=int, default=EVAL_SEED, help="episode seed (default %(default)s)")
+    seed_option(pl, help="episode seed", default=EVAL_SEED)
     pl.add_argument("--camera", default="front", help="camera preset (default front)")
-    pl.add_argument("--width", type=int, default=640, help="pixels (default 640)")
-    pl.add_argument("--height", type=int, default=480, help="pixels (default 480)")
+    number(pl, "--width", int, lo=PIXELS[0], hi=PIXELS[1], default=640, help="pixels")
+    number(pl, "--height", int, lo=PIXELS[0], hi=PIXELS[1], default=480, help="pixels")
     pl.set_defaults(func=_cmd_play)
     return parser
 
@@ -709,6 +749,12 @@ def main(argv: list[str] | None = None) -> int:
     except SimulationUnstable as e:
         print(f"gripper {args.command}: unstable simulation: {e}", file=sys.stderr)
         return EXIT_UNSTABLE
+    except KeyboardInterrupt:
+        # Ctrl-C: one line, not a traceback. Records are appended and flushed one by one and
+        # every summary is written atomically, so what finished is kept and a rerun resumes.
+        print(f"gripper {args.command}: interrupted; finished results are kept (rerun to resume)",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
     except BrokenPipeError:
         # the reader stopped early (``gripper bend | head``): end quietly, as Python's docs
         # advise, with stdout pointed at devnull so the interpreter's final flush cannot fail

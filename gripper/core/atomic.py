@@ -39,32 +39,84 @@ def _nearest_existing(path: Path) -> Path:
     return anc
 
 
-def check_output_dir(path: str | Path, flag: str = "--out") -> Path:
-    """Refuse, before any work, an output folder that is an existing file, that cannot be
-    created (a file in the way) or that is not writable; create nothing.
+def _why(err: OSError) -> str:
+    return (err.strerror or str(err)).lower()
+
+
+def _probe_folder(folder: Path, flag: str, shown: Path) -> None:
+    """Create ``folder`` (and its missing parents) and a temporary file in it, as the real
+    writes will, then remove everything this made: the check leaves the tree as it found it."""
+    made: list[Path] = []
+    try:
+        missing = []
+        anc = folder
+        while not anc.exists():
+            missing.append(anc)
+            if anc == anc.parent:
+                break
+            anc = anc.parent
+        for d in reversed(missing):
+            d.mkdir()
+            made.append(d)
+        fd, tmp = tempfile.mkstemp(prefix=".gripper-probe-", dir=folder)
+        os.close(fd)
+        os.unlink(tmp)
+    except OSError as e:
+        raise ValueError(f"{flag}: cannot write in {shown}: {_why(e)}") from None
+    finally:
+        for d in reversed(made):
+            try:
+                d.rmdir()
+            except OSError:
+                pass
+
+
+def _refuse_empty(path: str | Path, flag: str) -> Path:
+    if not str(path).strip():
+        raise ValueError(f"{flag}: empty path; give a file or folder name")
+    return Path(path)
+
+
+def check_output_dir(path: str | Path, flag: str = "--out", files: tuple[str, ...] = ()) -> Path:
+    """Refuse, before any work, an output folder that cannot be written: an empty path, an
+    existing file, a path that cannot be created (tried: the folder and a temporary file in it
+    are made and removed again, so it holds as root and on read-only mounts too), or a run
+    folder where one of the run's own ``files`` is a folder or cannot be opened for writing.
+    Leaves the file tree as it was.
 
     Raises:
         ValueError: one line naming ``flag``, the path and what is wrong.
     """
-    out = Path(path)
+    out = _refuse_empty(path, flag)
     if out.exists() and not out.is_dir():
         raise ValueError(f"{flag}: {out} is an existing file; give a folder (new or a run's own)")
     anc = _nearest_existing(out)
     if not anc.is_dir():
         raise ValueError(f"{flag}: cannot create {out}: {anc} is a file, not a folder")
-    if not os.access(anc, os.W_OK | os.X_OK):
-        raise ValueError(f"{flag}: cannot write in {anc}: permission denied; choose another folder")
+    _probe_folder(out, flag, out)
+    for name in files:
+        f = out / name
+        if f.is_symlink() or (f.exists() and not f.is_file()):
+            raise ValueError(f"{flag}: {f} is not a regular file; move it away or choose another folder")
+        if f.exists():
+            try:
+                with open(f, "ab"):
+                    pass
+            except OSError as e:
+                raise ValueError(f"{flag}: cannot write {f}: {_why(e)}") from None
     return out
 
 
 def check_output_file(path: str | Path, flag: str, suffixes: tuple[str, ...] = ()) -> Path:
-    """Refuse, before any work, an output file that is an existing folder, has a suffix not in
-    ``suffixes`` (if given), or whose folder does not exist or is not writable.
+    """Refuse, before any work, an output file that cannot be written: an empty path, a suffix
+    not in ``suffixes`` (if given), an existing folder, a folder that does not exist, or one
+    where a temporary file cannot be made (tried and removed again, as :func:`write_atomic`
+    will make one).
 
     Raises:
         ValueError: one line naming ``flag``, the path and what is wrong.
     """
-    out = Path(path)
+    out = _refuse_empty(path, flag)
     if suffixes and out.suffix.lower() not in suffixes:
         raise ValueError(f"{flag}: {out} must end in {' or '.join(suffixes)}")
     if out.is_dir():
@@ -74,6 +126,7 @@ def check_output_file(path: str | Path, flag: str, suffixes: tuple[str, ...] = (
         raise ValueError(f"{flag}: cannot write {out}: {folder} is a file, not a folder")
     if not folder.is_dir():
         raise ValueError(f"{flag}: folder {folder} does not exist; create it first")
-    if not os.access(folder, os.W_OK | os.X_OK) or (out.exists() and not os.access(out, os.W_OK)):
-        raise ValueError(f"{flag}: cannot write {out}: permission denied")
+    if out.exists() and not out.is_file():
+        raise ValueError(f"{flag}: {out} is not a regular file")
+    _probe_folder(folder, flag, folder)
     return out

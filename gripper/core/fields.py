@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from dataclasses import dataclass
 from typing import Any, ClassVar, Self
 
@@ -154,3 +155,18 @@ class Validated:
     def replace(self, **changes: Any) -> Self:
         """A validated copy with ``changes`` applied (``dataclasses.replace``)."""
         return dataclasses.replace(self, **changes).validate()  # type: ignore[type-var]
+
+
+# A name that becomes part of a file name or a record key: letters, digits and ``_ . -``,
+# starting with a letter or digit, at most 64 characters (no path separators, no ``..``).
+SAFE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,63}\Z")
+
+
+def check_safe_name(name: object, what: str) -> str:
+    """``name`` if it matches :data:`SAFE_NAME`; else ValueError naming ``what`` and the rule."""
+    if not isinstance(name, str) or not SAFE_NAME.match(name) or ".." in name:
+        text = str(name)
+        shown = text if len(text) <= 40 else f"{text[:40]}... ({len(text)} characters)"
+        raise ValueError(f"{what}: {shown!r} is not allowed: use letters, digits and _ . - (at most 64, "
+                         "starting with a letter or digit)")
+    return name

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from gripper.core.fields import Validated, param
-from gripper.core.timesteps import PAPER_BENDING_TIMESTEP, TRIAL_TIMESTEP
+from gripper.core.timesteps import PAPER_BENDING_TIMESTEP, TRIAL_TIMESTEP, check_step_budget
 
 # Grasp policies: the object-agnostic controller, or each object's own closing command.
 POLICIES = ("controller", "per_object")
@@ -134,14 +134,17 @@ class BendingConfig(Validated):
     r_max: float = param(0.45, "-", gt=0, lt=1,
                          source="the five default cuts close at r ≈ 0.44 (bending ≈ 206°), inside the "
                          "hobby servo's travel (r <= 0.65)")
-    duration: float = param(2.0, "s", gt=0, source="paper 000 §IV: 2 s")
-    timestep: float = param(PAPER_BENDING_TIMESTEP, "s", gt=0, le=0.01, source="paper 000 §IV: 5e-4 s")
+    duration: float = param(2.0, "s", gt=0, le=600, source="paper 000 §IV: 2 s; at most ten minutes")
+    timestep: float = param(PAPER_BENDING_TIMESTEP, "s", ge=1e-5, le=0.01, source="paper 000 §IV: 5e-4 s")
     mode: str = param("dynamic", "-", choices=("dynamic", "quasi_static"), source="one ramp, or held set-points")
     n_points: int = param(101, "-", ge=2, le=100_000, integer=True, source="recorded samples or set-points")
     settle_tol: float = param(1.0e-3, "rad/s", gt=0, source="quasi-static: joint speed counted as at rest")
     settle_time_max: float = param(3.0, "s", gt=0, source="quasi-static: longest wait at one set-point")
     settle_band_deg: float = param(0.01, "deg", gt=0,
                                    source="quasi-static: hinge angle change over a chunk counted as at rest")
+
+    def check(self) -> None:
+        check_step_budget(self.duration, self.timestep, "bend.duration")
 
 
 # Pull-out test (gripper.experiments.pullout): load ramp rate [N/s], the largest load tried [N]

@@ -31,7 +31,7 @@ from pathlib import Path
 
 import mujoco
 
-from gripper.core.fields import Validated, param
+from gripper.core.fields import Validated, check_safe_name, param
 from gripper.core.resources import OBJECTS_DIR
 
 OBJECT_BODY = "object"
@@ -158,6 +158,10 @@ class GraspObject(Validated):
         return self.damage != "none" and measure > self.damage_limit
 
     def validate(self) -> GraspObject:
+        if isinstance(self.name, str) and self.name.startswith("mesh:"):
+            _check_mesh_spec(self.name)
+        else:
+            check_safe_name(self.name, "object.name")
         where = f"object.{self.name}"
         if self.kind not in KINDS:
             raise ValueError(f"{where}.kind: must be one of {', '.join(KINDS)}, got {self.kind!r}")
@@ -241,6 +245,16 @@ def library() -> dict[str, GraspObject]:
     if not LIBRARY:
         LIBRARY.update(_library())
     return LIBRARY
+
+
+MESH_SPEC_MAX = 255  # characters of a ``mesh:PATH[::MASS]`` name, a file system's name limit
+
+
+def _check_mesh_spec(spec: str) -> None:
+    """A ``mesh:`` spec names its records: printable, one line, at most :data:`MESH_SPEC_MAX`."""
+    if len(spec) > MESH_SPEC_MAX or not spec.isprintable():
+        raise ValueError(f"objects: a mesh:PATH name must be printable and at most {MESH_SPEC_MAX} "
+                         f"characters, got {len(spec)} characters")
 
 
 def get_object(spec: str) -> GraspObject:

@@ -12,12 +12,22 @@ crash next to them (PyTorch's optimisers, through triton's native module), so im
   in a child process whether an EGL display starts; use ``egl`` if so, else ``osmesa`` if
   libOSMesa is installed; point MuJoCo's renderer at that backend. A ``MUJOCO_GL`` the user
   set is always kept.
+
+The video encoder: the package writes and reads video with ``mediapy``, which runs an ``ffmpeg``
+program and by default looks for one on ``PATH``; the project installs its own binary with the
+``imageio-ffmpeg`` wheel instead. :func:`use_bundled_ffmpeg` (run when this module is imported,
+that is by ``import gripper``) points ``mediapy`` at that binary if ``mediapy`` finds no
+``ffmpeg`` of its own, so ``mediapy.read_video`` reads the tool's MP4 files on a machine with
+no system ffmpeg. ``mediapy`` takes about 0.8 s to import (matplotlib), so it is not imported
+here: if it is not imported yet, a one-shot import hook sets it up right after its first import.
 """
 
 from __future__ import annotations
 
 import ctypes.util
 import importlib
+import importlib.abc
+import importlib.util
 import os
 import subprocess
 import sys
@@ -115,3 +125,52 @@ def gl_error(err: Exception) -> RuntimeError:
         "needs Mesa EGL (Debian: apt install libegl1 libgl1-mesa-dri) or OSMesa (apt install "
         "libosmesa6, then MUJOCO_GL=osmesa). A MUJOCO_GL you set yourself must be set before "
         "mujoco is imported.")
+
+
+def point_mediapy_at_ffmpeg(mediapy) -> bool:
+    """If ``mediapy`` finds no ``ffmpeg`` (none on ``PATH``, none set), point it at
+    imageio-ffmpeg's bundled binary. Returns whether ``mediapy`` can run ffmpeg now."""
+    if mediapy.video_is_available():
+        return True
+    try:
+        import imageio_ffmpeg
+
+        mediapy.set_ffmpeg(imageio_ffmpeg.get_ffmpeg_exe())
+    except (ImportError, RuntimeError):  # no imageio-ffmpeg, or its binary is missing
+        return False
+    return mediapy.video_is_available()
+
+
+class _MediapyHook(importlib.abc.MetaPathFinder):
+    """Finds nothing itself: on the first ``import mediapy`` it lets the other finders find the
+    module, then runs :func:`point_mediapy_at_ffmpeg` on it as soon as it has been executed."""
+
+    def find_spec(self, fullname, path=None, target=None):
+        if fullname != "mediapy":
+            return None
+        if self in sys.meta_path:
+            sys.meta_path.remove(self)  # one shot, and no recursion through find_spec below
+        spec = importlib.util.find_spec(fullname)
+        loader = getattr(spec, "loader", None)
+        if loader is None or not hasattr(loader, "exec_module"):
+            return spec
+        exec_module = loader.exec_module
+
+        def exec_and_point(module):
+            exec_module(module)
+            point_mediapy_at_ffmpeg(module)
+
+        loader.exec_module = exec_and_point  # this spec's own loader instance
+        return spec
+
+
+def use_bundled_ffmpeg() -> None:
+    """Make ``mediapy`` use imageio-ffmpeg's binary when it has no ffmpeg of its own: now if
+    ``mediapy`` is imported, else right after it is first imported (see the module docstring)."""
+    if "mediapy" in sys.modules:
+        point_mediapy_at_ffmpeg(sys.modules["mediapy"])
+    elif not any(isinstance(f, _MediapyHook) for f in sys.meta_path):
+        sys.meta_path.insert(0, _MediapyHook())
+
+
+use_bundled_ffmpeg()  # on ``import gripper`` (which imports this module): costs no import of mediapy

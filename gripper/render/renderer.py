@@ -18,9 +18,9 @@ from dataclasses import dataclass
 
 from gripper.render.backend import ensure_gl_backend, gl_error
 
-# Presets. "front" and "side" are the scene's own fixed cameras, "palm" looks down from the palm
-# at the object; "top" and "track" are free cameras set here (no change to the committed model):
-# "track" follows the palm body at a three-quarter view.
+# Presets. "palm" is the model's camera on the palm, looking down at the object; the others are
+# free cameras set here (no change to the committed model): "front" and "side" look at the grasp
+# from -y and +x, "top" straight down, "track" follows the palm body at a three-quarter view.
 CAMERAS = ("front", "side", "top", "track", "palm")
 
 
@@ -31,7 +31,7 @@ CAMERAS = ("front", "side", "top", "track", "palm")
 SHADOW_SIZE = 1024
 
 
-_MODEL_CAMERAS = {"front": "front", "side": "side", "palm": "palm_cam"}
+_MODEL_CAMERAS = {"palm": "palm_cam"}
 
 
 @dataclass(frozen=True)
@@ -42,10 +42,17 @@ class FreeView:
     elevation: float
 
 
+# "front" / "side": fixed, 0.5 m from a point 0.15 m above the grasp site, 15° down. They frame
+# the whole trial: the gripper at its 0.25 m home height (settle, start of the approach), at the
+# table (end of the approach) and lifted 0.10 m (hold, shake), with the object, below the text
+# overlay's band at the top (at 320x240 the gripper spans rows 48-214 of 240; the scene's own
+# "front" / "side" cameras, 0.2 m high, cut the lifted gripper off at the top edge).
 # "top": straight down on the grasp site from 0.5 m; "track": 0.32 m from the palm's subtree
 # centre of mass (the palm with its fingers), 12° down, from between two fingers, so the
 # object inside the fingers stays visible under the palm.
-_FREE = {"top": FreeView((0.0, 0.0, 0.05), 0.5, 90.0, -89.0),
+_FREE = {"front": FreeView((0.0, 0.0, 0.15), 0.5, 90.0, -15.0),
+         "side": FreeView((0.0, 0.0, 0.15), 0.5, 180.0, -15.0),
+         "top": FreeView((0.0, 0.0, 0.05), 0.5, 90.0, -89.0),
          "track": FreeView((0.0, 0.0, 0.0), 0.32, 135.0, -12.0)}
 
 

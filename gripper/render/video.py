@@ -66,22 +66,67 @@ def check_output_path(out: str | Path) -> Path:
     return out
 
 
+class ProgressLines:
+    """Progress of a loop over ``total`` items as lines for an ``on_progress`` callback.
+
+    ``update(done)`` after each item says ``"rendering: 120/300 frames"`` once another tenth is
+    done and at least ``min_interval_s`` has passed since the last line (so at most ten lines, and
+    at most one a second); ``finish(done)`` says the last line.
+
+    Example:
+        >>> lines = []
+        >>> p = ProgressLines(lines.append, 4, min_interval_s=0.0)
+        >>> for i in range(1, 5):
+        ...     p.update(i)
+        >>> p.finish(4); lines[-1]
+        'rendering: 4/4 frames'
+    """
+
+    def __init__(self, say: Callable[[str], None], total: int, *, what: str = "rendering", unit: str = "frames",
+                 min_interval_s: float = 1.0):
+        self.say, self.total, self.what, self.unit = say, max(int(total), 1), what, unit
+        self.min_interval_s = min_interval_s
+        self._step = max(self.total / 10.0, 1.0)
+        self._next = self._step
+        self._last_t = time.perf_counter()
+
+    def update(self, done: int) -> None:
+        now = time.perf_counter()
+        if self._next <= done < self.total and now - self._last_t >= self.min_interval_s:
+            self.say(f"{self.what}: {done}/{self.total} {self.unit}")
+            self._last_t = now
+            self._next = (done // self._step + 1) * self._step
+
+    def finish(self, done: int, note: str = "") -> None:
+        """The last line, ``done/done`` (``note`` says why, if the loop ended before ``total``)."""
+        self.say(f"{self.what}: {done}/{done} {self.unit}{note}")
+
+
+def overlay_band(height: int, n_lines: int = 2) -> int:
+    """Height [px] of the black band :func:`overlay_lines` draws at the top of a frame."""
+    return (max(10, height // 32) + 4) * n_lines + 6
+
+
 def overlay_lines(frame: np.ndarray, lines: list[str]) -> np.ndarray:
     from PIL import Image, ImageDraw
 
     img = Image.fromarray(frame)
     draw = ImageDraw.Draw(img)
     h = max(10, frame.shape[0] // 32)
-    draw.rectangle([0, 0, frame.shape[1], (h + 4) * len(lines) + 6], fill=(0, 0, 0))
+    draw.rectangle([0, 0, frame.shape[1], overlay_band(frame.shape[0], len(lines))], fill=(0, 0, 0))
     for k, text in enumerate(lines):
         draw.text((6, 4 + k * (h + 4)), text, fill=(255, 255, 255))
     return np.asarray(img)
 
 
 def render_frames(rec: FrameRecorder, *, width: int = 640, height: int = 480, camera: str = "front",
-                  overlay: bool = True) -> np.ndarray:
-    """Render every recorded state with one renderer; (n, height, width, 3) uint8."""
+                  overlay: bool = True, on_progress: Callable[[str], None] | None = None) -> np.ndarray:
+    """Render every recorded state with one renderer; (n, height, width, 3) uint8.
+
+    ``on_progress``: called with lines ``"rendering: 120/300 frames"`` (see :class:`ProgressLines`).
+    """
     m = rec.model
+    progress = ProgressLines(on_progress or (lambda msg: None), len(rec.states))
     renderer = SceneRenderer(m, width=width, height=height, camera=camera)
     d = mujoco.MjData(m)
     frames = np.empty((len(rec.states), height, width, 3), dtype=np.uint8)
@@ -95,8 +140,10 @@ def render_frames(rec: FrameRecorder, *, width: int = 640, height: int = 480, ca
                 tens = " ".join(f"{t:4.1f}" for t in rec.tensions[i])
                 img = overlay_lines(img, [f"{rec.phases[i]:<8} t = {d.time:5.2f} s", f"cable tension [N]: {tens}"])
             frames[i] = img
+            progress.update(i + 1)
     finally:
         renderer.close()
+    progress.finish(len(frames))
     return frames
 
 
@@ -118,7 +165,8 @@ def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, p
     """Run one scripted trial and write its video; return the trial record plus video figures.
 
     ``still``: also write one frame as PNG, the first of the hold phase (the object lifted).
-    ``on_progress``: called with a line as each stage starts (simulate, render, encode).
+    ``on_progress``: called with a line as each stage starts (simulate, render, encode) and with
+    ``"rendering: 120/300 frames"`` lines while rendering (each tenth, at most one a second).
 
     Raises:
         ValueError: bad output path, camera, size or fps (checked before the trial runs).
@@ -141,7 +189,7 @@ def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, p
     t_sim = time.perf_counter() - t0
     say(f"rendering {len(rec.states)} frames ({width}x{height}, camera {camera}) ...")
     t0 = time.perf_counter()
-    frames = render_frames(rec, width=width, height=height, camera=camera, overlay=overlay)
+    frames = render_frames(rec, width=width, height=height, camera=camera, overlay=overlay, on_progress=say)
     t_render = time.perf_counter() - t0
     say(f"encoding {out.name} ...")
     t0 = time.perf_counter()

@@ -43,6 +43,7 @@ from gripper.rl.hyperparams import hyperparams_for
 COLUMNS = ["steps", "wall_s", "train_episodes", "train_success", "train_return", "eval_success",
            "eval_return"]
 CONFIG_FILE, PROGRESS_FILE, POLICY_FILE, NORM_FILE = "config.json", "progress.csv", "policy.zip", "vecnormalize.pkl"
+RUN_FILES = (CONFIG_FILE, PROGRESS_FILE, POLICY_FILE, NORM_FILE)
 
 
 def chunk_size(cfg: TrainConfig, hp: dict) -> int:

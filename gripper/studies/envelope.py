@@ -181,6 +181,10 @@ def _run_one(env: Envelope, k: int, index: int, run_hash: str) -> dict:
             **dataclasses.replace(rec, run_config_hash=run_hash).to_dict()}
 
 
+# The files of an envelope's run folder (and one map_<shape>.png per shape).
+RUN_FILES = ("envelope.json", "trials.jsonl", "envelope.csv", "summary.json")
+
+
 def run_envelope(env: Envelope, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
                  progress: bool = True) -> dict:
     """Run (or resume) the envelope into ``out``; write the table, the maps and the summary."""
@@ -188,7 +192,8 @@ def run_envelope(env: Envelope, out: str | Path, *, workers: int = DEFAULT_WORKE
 
     env.validate()
     h = env.hash()
-    out = open_run(out, workers, scheduler, "envelope.json", "envelope", h, env.identity(), "another envelope")
+    out = open_run(out, workers, scheduler, "envelope.json", "envelope", h, env.identity(), "another envelope",
+                   RUN_FILES)
     path = out / "trials.jsonl"
     done = {(r["point"], r["index"]): r for r in read_jsonl(path)}
     jobs = env.jobs()

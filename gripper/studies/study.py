@@ -66,6 +66,7 @@ from typing import Any
 import numpy as np
 
 from gripper.bench.defaults import DEFAULT_WORKERS
+from gripper.core.fields import check_safe_name
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
@@ -252,6 +253,8 @@ def load_study(path: str | Path) -> Study:
         data = tomllib.loads(text)
     except OSError as e:
         raise ValueError(f"study: cannot read {path} ({e.strerror})") from None
+    except UnicodeDecodeError:
+        raise ValueError(f"study: {path} is not a text file (not UTF-8); a study file is TOML") from None
     except tomllib.TOMLDecodeError as e:
         raise ValueError(f"study: {path} is not valid TOML ({e})") from None
 
@@ -264,13 +267,21 @@ def load_study(path: str | Path) -> Study:
             raise err(section, "unknown section; allowed: study, vary, responses, objective")
         if not isinstance(data[section], dict):
             raise err(section, f"must be a table ([{section}]), got {data[section]!r}")
-    st = data.get("study", {})
+    if "study" not in data:
+        raise ValueError(f"study: {path}: no [study] section; a study file starts with [study] "
+                         "(see the shipped one_at_a_time.toml)")
+    st = data["study"]
     for k in st:
         if k not in ("name", "base", "design", "points", "seed"):
             raise err(k, "unknown key in [study]; allowed: name, base, design, points, seed")
     for k in ("name", "base", "design"):
         if k in st and not isinstance(st[k], str):
             raise err(k, f"must be text, got {st[k]!r}")
+    if "name" in st:
+        try:
+            check_safe_name(st["name"], "name")
+        except ValueError as e:
+            raise err("name", str(e).partition(": ")[2]) from None
     design = st.get("design", "one_at_a_time")
     if design not in DESIGNS:
         raise err("design", f"must be one of {', '.join(DESIGNS)}, got {design!r}")
@@ -484,13 +495,17 @@ def run_point(study: Study, index: int, changes: dict) -> dict:
 
 # --- running, tables, plots ------------------------------------------------------------------
 
+# The files of a study's run folder (and one plot_<parameter>.png per varied parameter).
+RUN_FILES = ("study.json", "results.jsonl", "results.csv", "recommendations.md")
+
+
 def run_study(study: Study, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
               progress: bool = True) -> list[dict]:
     """Run (or resume) the study into ``out``; write the table, plots and recommendations."""
     from gripper.bench.execution import open_run, read_jsonl, run_ordered
 
     out = open_run(out, workers, scheduler, "study.json", "study", study.hash(), study.identity(),
-                   "another study")
+                   "another study", RUN_FILES)
     path = out / "results.jsonl"
     points = study.design_points()
     done = {r["point"]: r for r in read_jsonl(path)}
