@@ -24,7 +24,7 @@ def _strip(recs):
 
 def _summary(path):
     s = json.loads((path / "summary.json").read_text())
-    s.pop("wall_time_s")
+    s.pop("wall_time_s"), s.pop("resumed")  # of this call, not of the results
     for o in s["objects"].values():
         o.pop("mean_wall_time_s")
     return s

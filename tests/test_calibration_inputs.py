@@ -237,6 +237,26 @@ def test_quick_look_tension_keeps_the_cuts_open():
     assert t * largest < 0.6 * CLOSURE < cfg.tension_max * largest
 
 
+def test_auto_tension_with_a_given_reference(tmp_path, monkeypatch):
+    """A caller that passes a ReferenceConfig for other settings (levels) can still have the
+    tension set from the design (auto_tension=True); without it, the given tension is run."""
+    class Ran(Exception):
+        pass
+
+    def capture(p, cfg):
+        raise Ran(cfg.tension_max)
+
+    monkeypatch.setattr(pipeline, "run_reference", capture)
+    ref = ReferenceConfig(n_levels=4)
+    with pytest.raises(Ran) as auto:
+        pipeline.calibrate(tmp_path / "cal", reference=ref, converge=False, auto_tension=True)
+    assert auto.value.args[0] == pipeline.quick_tension_max(P, ref) < 0.5 * ref.tension_max
+    with pytest.raises(Ran) as given:
+        pipeline.calibrate(tmp_path / "cal", reference=ref, converge=False)
+    assert given.value.args[0] == ref.tension_max
+    assert list(tmp_path.iterdir()) == []
+
+
 @pytest.mark.slow
 def test_no_converge_quick_look_runs_with_default_settings(tmp_path):
     """``gripper calibrate --no-converge`` as documented (about 1.5 minutes on 2 cores)."""

@@ -6,17 +6,24 @@
   metadata;
 - ``<!-- sensing-table -->``: the servo sensing model's fields, likewise;
 - ``<!-- depth-camera-table -->``: the palm depth camera's fields, likewise;
-- ``<!-- rl-hyperparams -->``: the RL baselines' hyper-parameters (``gripper.rl.hyperparams``).
+- ``<!-- rl-hyperparams -->``: the RL baselines' hyper-parameters (``gripper.rl.hyperparams``);
+- ``<!-- version -->``: the package's version.
+
+The API pages' examples drop their ``# doctest: +SKIP`` markers (they keep the examples that
+run simulations out of a doctest run; a reader needs only the example).
 """
 
 from __future__ import annotations
 
 import json
 import os
+import re
+
+CLI_COLUMNS = 80  # the widest code block the site's content column shows without a scroll bar
 
 
 def _cli_reference() -> str:
-    os.environ["COLUMNS"] = "100"  # argparse wraps to the terminal width: fix it
+    os.environ["COLUMNS"] = str(CLI_COLUMNS)  # argparse wraps to the terminal width: fix it
     from gripper.cli.main import build_parser
 
     parser = build_parser()
@@ -73,7 +80,13 @@ def _rl_hyperparams() -> str:
     return "\n".join(lines)
 
 
-MARKERS = {"<!-- rl-hyperparams -->": _rl_hyperparams,
+def _version() -> str:
+    from importlib.metadata import version
+
+    return version("gripper")
+
+
+MARKERS = {"<!-- rl-hyperparams -->": _rl_hyperparams, "<!-- version -->": _version,
            "<!-- cli-reference -->": _cli_reference, "<!-- trial-record-schema -->": _schema,
            "<!-- protocol-table -->": _protocol_table, "<!-- sensing-table -->": _sensing_table,
            "<!-- depth-camera-table -->": _depth_camera_table}
@@ -84,3 +97,10 @@ def on_page_markdown(markdown: str, **kwargs) -> str:
         if marker in markdown:
             markdown = markdown.replace(marker, make())
     return markdown
+
+
+SKIP_MARKER = re.compile(r"\s*(?:<span[^>]*>)?#\s*doctest:\s*\+SKIP(?:</span>)?")
+
+
+def on_page_content(html: str, **kwargs) -> str:
+    return SKIP_MARKER.sub("", html)

@@ -106,7 +106,8 @@ def default_settings(kind: str = "continuum", fmbs=None) -> dict:
 def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
               data: str | Path | None = None, reference: ReferenceConfig | None = None,
               fit: FitConfig | None = None, kind: str = "continuum", fmbs: FmbsConfig | None = None,
-              converge: bool = True, on_progress: Callable[[str], None] | None = None
+              converge: bool = True, on_progress: Callable[[str], None] | None = None,
+              auto_tension: bool | None = None
               ) -> tuple[Calibration, FitResult, BendingRecord]:
     """Run the reference (or read ``data``), fit, write ``calibration.json`` and the report.
 
@@ -119,6 +120,10 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
             will have: :func:`auto_tension_max` (converged) or :func:`quick_tension_max` (the
             mesh as it is), never ``ReferenceConfig.tension_max``'s 0.25 N, which closes the
             default design's cuts.
+        auto_tension: set the reference run's highest tension from the design as above even
+            though ``reference`` is given (its ``tension_max`` is then ignored); None: only when
+            ``reference`` is None. For callers that pass a ``reference`` for other settings
+            (mesh, levels) without choosing a tension.
 
     Files in ``out_dir``: ``calibration.json``, ``report.png``, ``errors.csv`` and, for a
     reference run, ``reference.json`` (the record) and ``convergence.json`` (the mesh study).
@@ -141,6 +146,7 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
     if out.exists() and not out.is_dir():
         raise ValueError(f"--out: {str(out)!r} exists and is not a folder")
     ref_cfg = (reference or ReferenceConfig()).validate()
+    auto = reference is None if auto_tension is None else bool(auto_tension)
     if fmbs is not None:
         fmbs = fmbs.validate()
     # Every input is checked here, before the slow runs and before any file is written.
@@ -186,21 +192,21 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
                     (tmp / "convergence.json").write_text(json.dumps(conv.to_dict(), indent=2) + "\n")
                     say(format_convergence(conv))
                     run_cfg = replace(ref_cfg, modulus_factor=conv.stiffness_correction)
-                    if reference is None and kind == "continuum":
+                    if auto and kind == "continuum":
                         run_cfg = replace(run_cfg, tension_max=auto_tension_max(p, conv))
                     settings["convergence"] = {
                         "stiffness_correction": conv.stiffness_correction,
                         "default_error": conv.default_error,
                         "order": conv.richardson.order, "gci_fine": conv.richardson.gci_fine,
                         "extrapolated_compliance_deg_per_N": conv.richardson.extrapolated}
-                elif reference is None and kind == "continuum":
+                elif auto and kind == "continuum":
                     # the mesh as it is: its own compliance sets the tension (quick_tension_max)
                     run_cfg = replace(run_cfg, tension_max=quick_tension_max(p, run_cfg))
                 if kind == "fmbs":
                     from gripper.calibration.fmbs import fmbs_tension_max, run_fmbs
 
                     assert fmbs is not None  # defaulted above
-                    if reference is None:
+                    if auto:
                         run_cfg = replace(run_cfg, tension_max=fmbs_tension_max(p, fmbs))
                     say(f"flexible multibody run ({fmbs.reading} reading, "
                         f"{run_cfg.tension_max:.3g} N) ...")

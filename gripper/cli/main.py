@@ -15,6 +15,7 @@ import argparse
 import json
 import os
 import sys
+import textwrap
 
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
 from gripper.bench.execution import check_scheduler
@@ -225,7 +226,7 @@ def _needs_rl(command: str) -> None:
 
     if importlib.util.find_spec("stable_baselines3") is None or importlib.util.find_spec("torch") is None:
         raise ValueError(f"{command}: needs the rl extra (stable-baselines3 and torch): "
-                         "pip install -e '.[rl]'")
+                         "pip install 'gripper[rl]' (in this repository: .venv/bin/pip install -e '.[rl]')")
 
 
 def _hyperparam_overrides(items: list[str], flag: str = "--set") -> dict:
@@ -464,7 +465,8 @@ def build_parser() -> argparse.ArgumentParser:
         description="Simulate a four-finger cable-driven soft gripper in MuJoCo. "
                     "All quantities in SI units unless a name says otherwise.")
     parser.add_argument("--version", action="version", version=_version_text())
-    sub = parser.add_subparsers(dest="command", required=True)
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND",
+                                title="commands (gripper COMMAND --help for each)")
 
     def with_protocol(p):
         proto = GraspProtocol()
@@ -541,9 +543,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = with_params(sub.add_parser(
         "params", help="write a parameter file (defaults or --params)",
-        description="Write the gripper parameters (the defaults, or --params with any --springs or "
-                    "--calibration applied) to a .json or .toml file. Every field, its unit, "
-                    "allowed range and source:",
+        description=textwrap.fill("Write the gripper parameters (the defaults, or --params with any "
+                                  "--springs or --calibration applied) to a .json or .toml file. Every "
+                                  "field, its unit, allowed range and source:", 78),
         epilog=parameter_help(), formatter_class=argparse.RawDescriptionHelpFormatter))
     p.add_argument("--out", required=True, metavar="FILE", help=".json or .toml")
     p.set_defaults(func=_cmd_params)
@@ -738,7 +740,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as e:  # --help, --version (0) or a usage error (2, one line said already)
+        return int(e.code or 0)
     from gripper.sim.stability import SimulationUnstable  # after parsing: --help stays quick
 
     try:

@@ -572,12 +572,17 @@ def parameter_rows(params: GripperParams | None = None) -> list[tuple[str, str, 
             for section, klass in _SECTIONS.items() for name, spec in field_specs(klass).items()]
 
 
-def parameter_help() -> str:
-    """The parameter fields as command-line help text: name, default, unit, allowed, source."""
+def parameter_help(width: int = 80) -> str:
+    """The parameter fields as command-line help text: name, default, unit, allowed, source,
+    each wrapped to ``width`` columns."""
+    import textwrap
+
     lines = []
     for section, name, value, spec in parameter_rows():
         shown = list(value) if isinstance(value, tuple) else value
         if isinstance(shown, list) and len(shown) > 1:
             shown = "[" + ", ".join(f"{v:.3g}" for v in shown) + "]"
-        lines.append(f"  {section}.{name} = {shown} [{spec.unit}], {spec.allowed()}; {spec.source}")
+        text = f"{section}.{name} = {shown} [{spec.unit}], {spec.allowed()}; {spec.source}"
+        lines += textwrap.wrap(text, width, initial_indent="  ", subsequent_indent="      ",
+                               break_on_hyphens=False)
     return "\n".join(lines)

@@ -47,6 +47,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
+from gripper.core.fields import check_safe_name
 from gripper.objects.library import (
     DAMAGE_CRITERIA,
     DEFAULT_MESH_POINTS,
@@ -140,6 +141,10 @@ def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspO
         return tuple(float(x) for x in v) if kind == "size" else (float(v) if kind == "number" else v)
 
     name = get(obj, "object", "name", "text", required=True)
+    try:
+        check_safe_name(name, "object.name")
+    except ValueError as e:
+        raise fail("object.name", str(e).partition(": ")[2]) from None
     kind = get(obj, "object", "kind", "text", required=True)
     if kind not in KINDS:
         raise fail("object.kind", f"must be one of {', '.join(KINDS)}, got {kind!r}")

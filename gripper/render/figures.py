@@ -10,12 +10,11 @@ Example:
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import numpy as np
 
-from gripper.core.atomic import write_atomic
+from gripper.core.atomic import check_output_file, write_atomic
 
 # Cable shortening rates shown in the montage: six evenly spaced points from straight to the
 # bending test's r_max.
@@ -23,13 +22,8 @@ MONTAGE_PANELS = 6
 
 
 def check_png_path(out: str | Path, flag: str) -> Path:
-    out = Path(out)
-    if out.suffix.lower() != ".png":
-        raise ValueError(f"{flag}: figure file must end in .png, got {out.name!r}")
-    parent = out.parent if str(out.parent) else Path(".")
-    if not parent.is_dir() or not os.access(parent, os.W_OK):
-        raise ValueError(f"{flag}: folder {parent} does not exist or is not writable")
-    return out
+    """The output path if a PNG can be written there, else ValueError naming ``flag``."""
+    return check_output_file(out, flag, (".png",))
 
 
 def _save(fig, out: Path) -> None:

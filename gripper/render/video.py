@@ -15,7 +15,6 @@ Example:
 
 from __future__ import annotations
 
-import os
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -24,7 +23,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from gripper.core.atomic import write_atomic
+from gripper.core.atomic import check_output_file, write_atomic
 from gripper.render.renderer import SceneRenderer, check_view
 
 VIDEO_SUFFIXES = (".mp4", ".gif")
@@ -53,17 +52,9 @@ class FrameRecorder:
                 self._next += 1.0 / self.fps
 
 
-def check_output_path(out: str | Path) -> Path:
-    """The output path if a video can be written there, else ValueError naming ``--out``."""
-    out = Path(out)
-    if out.suffix.lower() not in VIDEO_SUFFIXES:
-        raise ValueError(f"--out: video file must end in {' or '.join(VIDEO_SUFFIXES)}, got {out.name!r}")
-    parent = out.parent if str(out.parent) else Path(".")
-    if not parent.is_dir():
-        raise ValueError(f"--out: folder {parent} does not exist")
-    if not os.access(parent, os.W_OK) or (out.exists() and not os.access(out, os.W_OK)):
-        raise ValueError(f"--out: {out} is not writable")
-    return out
+def check_output_path(out: str | Path, flag: str = "--out") -> Path:
+    """The output path if a video can be written there, else ValueError naming ``flag``."""
+    return check_output_file(out, flag, VIDEO_SUFFIXES)
 
 
 class ProgressLines:

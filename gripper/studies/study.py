@@ -66,7 +66,6 @@ from typing import Any
 import numpy as np
 
 from gripper.bench.defaults import DEFAULT_WORKERS
-from gripper.core.fields import check_safe_name
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
@@ -277,11 +276,9 @@ def load_study(path: str | Path) -> Study:
     for k in ("name", "base", "design"):
         if k in st and not isinstance(st[k], str):
             raise err(k, f"must be text, got {st[k]!r}")
-    if "name" in st:
-        try:
-            check_safe_name(st["name"], "name")
-        except ValueError as e:
-            raise err("name", str(e).partition(": ")[2]) from None
+    if "name" in st and (len(st["name"]) > 100 or not st["name"].isprintable()):
+        raise err("name", f"a title of at most 100 printable characters on one line, got {len(st['name'])} "
+                  "characters")
     design = st.get("design", "one_at_a_time")
     if design not in DESIGNS:
         raise err("design", f"must be one of {', '.join(DESIGNS)}, got {design!r}")
