@@ -33,23 +33,22 @@ The Gymnasium environment ``SoftGripperGrasp-v5`` is registered on import:
 import importlib
 from typing import TYPE_CHECKING, Any
 
+from gripper.core.after_import import after_import
 from gripper.render.backend import defer_gl_backend
 
 defer_gl_backend()  # no OpenGL library until something renders (gripper.render.backend)
 
 
-def _no_mujoco_log_file() -> None:
+def _no_mujoco_log_file(mujoco) -> None:
     """MuJoCo appends its warnings to ``MUJOCO_LOG.TXT`` in the current folder by default; the
     package counts every warning in its records instead (gripper.sim.stability), so the file
     would only be litter in the user's folder. The console copy stays."""
-    import mujoco
-
     log = mujoco.MjLogConfig.get()
     log.logto_file = False
     log.set()
 
 
-_no_mujoco_log_file()
+after_import("mujoco", _no_mujoco_log_file)  # when MuJoCo is first imported: not imported here
 
 # The public API, imported on first use (``import gripper`` stays quick): name -> module.
 _EXPORTS = {

@@ -162,3 +162,17 @@ def test_ctrl_c_ends_a_run_in_one_line_and_keeps_its_trials(tmp_path):
     assert done.returncode == 0, done.stderr
     lines = trials.read_text().splitlines()
     assert len(lines) == n + 1 and "\n".join(lines[:n]) + "\n" == kept
+
+
+def test_a_mujoco_warning_leaves_no_log_file(tmp_path):
+    """MuJoCo writes MUJOCO_LOG.TXT into the current folder on a warning unless told not to;
+    the package tells it, whether gripper or mujoco is imported first."""
+    step = ("m = mujoco.MjModel.from_xml_string('<mujoco><worldbody><body><freejoint/><geom size=\"1\"/>"
+            "</body></worldbody></mujoco>'); d = mujoco.MjData(m); d.qvel[0] = float('nan'); "
+            "mujoco.mj_step(m, d); assert d.warning[mujoco.mjtWarning.mjWARN_BADQVEL].number == 1")
+    for first in ("import gripper, mujoco", "import mujoco, gripper"):
+        done = subprocess.run([sys.executable, "-c", f"{first}; {step}"], cwd=tmp_path, capture_output=True,
+                              text=True, timeout=120)
+        assert done.returncode == 0, done.stderr
+        assert "Nan, Inf or huge value in QVEL" in done.stderr  # the console copy stays
+        assert list(tmp_path.iterdir()) == [], first

@@ -172,6 +172,14 @@ def stand_ins(monkeypatch):
     monkeypatch.setattr(study, "run_study", fake_study)
     monkeypatch.setattr(pipeline, "calibrate", fake("calibrate", ValueError("stand-in: not run")))
     monkeypatch.setattr(video, "record_trial_video", fake("video", ValueError("stand-in: not run")))
+    import gripper.experiments.crush as crush
+    import gripper.experiments.pullout as pullout
+    import gripper.experiments.smoke as smoke
+    import gripper.studies.envelope as envelope
+
+    for module, name in ((envelope, "run_envelope"), (smoke, "random_control_rollout"),
+                         (crush, "crush_test"), (pullout, "run_pullout")):
+        monkeypatch.setattr(module, name, fake(name, ValueError("stand-in: not run")))
 
 
 FLAGS = {
@@ -180,11 +188,16 @@ FLAGS = {
     "params": ["--out", "--params", "--springs", "--calibration"],
     "study": ["--workers", "--out"],
     "calibrate": ["--reference", "--reading", "--tension-max", "--levels", "--held-out", "--mesh-scale", "--out"],
-    "video": ["--object", "--out", "--camera", "--width", "--height", "--fps", "--seed"],
+    "video": ["--object", "--out", "--camera", "--width", "--height", "--fps", "--seed", "--index", "--still"],
+    "envelope": ["--out", "--sizes", "--masses", "--frictions", "--shapes", "--trials", "--seed", "--grip-tension"],
+    "check": ["--duration", "--seed", "--params"],
+    "crush": ["--objects", "--depth", "--speed", "--hold"],
+    "pullout": ["--objects", "--rate", "--max-force", "--grip-tension", "--policy"],
 }
-arg_values = st.one_of(st.sampled_from(["block", "balloon,block", "mesh:nowhere.stl", "mesh:x::abc", "nope",
-                                        "0", "-1", "2", "1e9", "nan", "inf", "paper", "fmbs", "front", "x.png",
-                                        "OUT", "OUT/sub", "FILE", "one_at_a_time"]),
+arg_values = st.one_of(st.sampled_from(["block", "balloon,block", "block,block", "mesh:nowhere.stl", "mesh:x::abc",
+                                        "nope", "0", "-1", "2", "1e9", "1e400", "nan", "inf", "", "paper", "fmbs",
+                                        "front", "x.png", "OUT", "OUT/sub", "FILE", "one_at_a_time", "sphere",
+                                        "0.03,0.03", "/proc/none/x", "x" * 300, "../../etc/evil"]),
                        st.text(string.ascii_letters + string.digits + ".,:-_/", max_size=8))
 
 

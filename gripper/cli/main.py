@@ -341,7 +341,7 @@ def _cmd_calibrate(args) -> int:
     fmbs = FmbsConfig(reading=args.reading) if args.reference == "fmbs" else None
     cal, result, record = calibrate(args.out, p, data=args.data, reference=ref, fit=fit,
                                     kind=args.reference, fmbs=fmbs,
-                                    converge=not args.no_converge,
+                                    converge=not args.no_converge, auto_tension=args.tension_max is None,
                                     on_progress=lambda m: print(m, file=sys.stderr))
     print(format_table(error_table(record, result)))
     m = cal.metrics

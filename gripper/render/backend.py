@@ -19,18 +19,19 @@ program and by default looks for one on ``PATH``; the project installs its own b
 that is by ``import gripper``) points ``mediapy`` at that binary if ``mediapy`` finds no
 ``ffmpeg`` of its own, so ``mediapy.read_video`` reads the tool's MP4 files on a machine with
 no system ffmpeg. ``mediapy`` takes about 0.8 s to import (matplotlib), so it is not imported
-here: if it is not imported yet, a one-shot import hook sets it up right after its first import.
+here: if it is not imported yet, it is set up right after its first import
+(:func:`gripper.core.after_import.after_import`).
 """
 
 from __future__ import annotations
 
 import ctypes.util
 import importlib
-import importlib.abc
-import importlib.util
 import os
 import subprocess
 import sys
+
+from gripper.core.after_import import after_import
 
 DEFERRED = "GRIPPER_GL_DEFERRED"
 
@@ -141,36 +142,10 @@ def point_mediapy_at_ffmpeg(mediapy) -> bool:
     return mediapy.video_is_available()
 
 
-class _MediapyHook(importlib.abc.MetaPathFinder):
-    """Finds nothing itself: on the first ``import mediapy`` it lets the other finders find the
-    module, then runs :func:`point_mediapy_at_ffmpeg` on it as soon as it has been executed."""
-
-    def find_spec(self, fullname, path=None, target=None):
-        if fullname != "mediapy":
-            return None
-        if self in sys.meta_path:
-            sys.meta_path.remove(self)  # one shot, and no recursion through find_spec below
-        spec = importlib.util.find_spec(fullname)
-        loader = getattr(spec, "loader", None)
-        if loader is None or not hasattr(loader, "exec_module"):
-            return spec
-        exec_module = loader.exec_module
-
-        def exec_and_point(module):
-            exec_module(module)
-            point_mediapy_at_ffmpeg(module)
-
-        loader.exec_module = exec_and_point  # this spec's own loader instance
-        return spec
-
-
 def use_bundled_ffmpeg() -> None:
     """Make ``mediapy`` use imageio-ffmpeg's binary when it has no ffmpeg of its own: now if
     ``mediapy`` is imported, else right after it is first imported (see the module docstring)."""
-    if "mediapy" in sys.modules:
-        point_mediapy_at_ffmpeg(sys.modules["mediapy"])
-    elif not any(isinstance(f, _MediapyHook) for f in sys.meta_path):
-        sys.meta_path.insert(0, _MediapyHook())
+    after_import("mediapy", point_mediapy_at_ffmpeg)
 
 
 use_bundled_ffmpeg()  # on ``import gripper`` (which imports this module): costs no import of mediapy
