@@ -38,6 +38,7 @@ import mujoco
 from gripper.core.atomic import write_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
+from gripper.core.user_files import read_user_text
 
 SCHEMA = "gripper.calibration/1"
 PAPER_STIFFNESS_NM_PER_DEG = 1.9e-3  # paper 000, Table 2
@@ -95,9 +96,7 @@ class Calibration:
         """
         path = Path(path)
         try:
-            data = json.loads(path.read_text())
-        except OSError as e:
-            raise ValueError(f"calibration file: cannot read {str(path)!r}: {e.strerror}") from None
+            data = json.loads(read_user_text(path, "calibration file"))
         except json.JSONDecodeError as e:
             raise ValueError(f"calibration file: {path.name} is not valid JSON: {e.msg} "
                              f"(line {e.lineno})") from None

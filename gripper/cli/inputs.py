@@ -34,13 +34,13 @@ class OneLineParser(argparse.ArgumentParser):
     """argparse with its usage errors on one line (the usage itself is ``--help``'s), and no
     empty values: ``--plot ''`` or ``--params ''`` is a slip, not a request for the default."""
 
-    def _get_values(self, action, arg_strings):  # type: ignore[override]
+    def _get_values(self, action, arg_strings):
         if action.option_strings and any(isinstance(a, str) and not a.strip() for a in arg_strings):
             hint = "" if action.required else "; leave the option out for its default"
             self.error(f"argument {'/'.join(action.option_strings)}: empty value{hint}")
         return super()._get_values(action, arg_strings)
 
-    def error(self, message: str):  # type: ignore[override]
+    def error(self, message: str):
         print(f"{self.prog}: error: {message} (see {self.prog} --help)", file=sys.stderr)
         raise SystemExit(2)
 

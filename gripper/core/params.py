@@ -27,6 +27,7 @@ from gripper.core.fields import FieldSpec, Validated, check_fields, field_specs,
 from gripper.core.resources import MODEL_DIR
 from gripper.core.servo import SERVO_PRESETS, ServoDatasheet, servo_datasheet
 from gripper.core.units import DEG
+from gripper.core.user_files import read_user_text
 
 # paper 000, Table 2: torsion spring stiffness 1.9e-3 N·m/deg = 0.1089 N·m/rad, as printed. The
 # unit is suspect (see docs/consistency.md): read per radian it is 1.9e-3 N·m/rad.
@@ -517,13 +518,7 @@ class GripperParams(Validated):
             ValueError: unreadable or malformed file, or invalid values.
         """
         path = Path(path)
-        try:
-            text = path.read_text()
-        except OSError as e:
-            raise ValueError(f"parameter file: cannot read {str(path)!r}: {e.strerror}") from None
-        except UnicodeDecodeError:
-            raise ValueError(f"parameter file: {path} is not a text file (not UTF-8); write "
-                             "TOML or JSON") from None
+        text = read_user_text(path, "parameter file")
         try:
             if path.suffix == ".toml":
                 data = tomllib.loads(text)

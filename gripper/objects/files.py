@@ -48,6 +48,7 @@ from pathlib import Path
 from typing import Any
 
 from gripper.core.fields import check_safe_name
+from gripper.core.user_files import read_user_text
 from gripper.objects.library import (
     DAMAGE_CRITERIA,
     DEFAULT_MESH_POINTS,
@@ -82,10 +83,7 @@ def load_object_file(path: str | Path) -> GraspObject:
         ValueError: one line naming the file, the key and what is allowed.
     """
     path = Path(path)
-    try:
-        text = path.read_text()
-    except (OSError, UnicodeDecodeError) as e:
-        raise ValueError(f"object file {path}: cannot read it ({getattr(e, 'strerror', None) or e})") from None
+    text = read_user_text(path, "object file")
     try:
         data = json.loads(text) if path.suffix == ".json" else tomllib.loads(text)
     except (json.JSONDecodeError, tomllib.TOMLDecodeError) as e:

@@ -41,7 +41,7 @@ def _departures(p: GripperParams, n: int = 3) -> list[str]:
             if isinstance(v, bool) or not isinstance(v, int | float) or v == d:
                 continue
             far = abs(math.log10(abs(v) / abs(d))) if v and d else math.inf
-            out.append((far, f"{sub.SECTION}.{g.name} = {v:g} (default {d:g})"))
+            out.append((far, f"{f.name}.{g.name} = {v:g} (default {d:g})"))
     return [text for _, text in sorted(out, reverse=True)[:n]]
 
 

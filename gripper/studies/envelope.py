@@ -51,6 +51,7 @@ from gripper.core.atomic import write_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
+from gripper.core.user_files import read_user_text
 from gripper.experiments.protocol import GRIP_TENSION, GraspProtocol, TrialNoise
 from gripper.objects.library import GraspObject
 
@@ -151,9 +152,7 @@ def load_envelope(path: str | Path, **overrides) -> Envelope:
     if not path.exists() and path.suffix == "" and path.parent == Path(".") and shipped.is_file():
         path = shipped
     try:
-        data = tomllib.loads(path.read_text())
-    except OSError as e:
-        raise ValueError(f"envelope: cannot read {path} ({e.strerror})") from None
+        data = tomllib.loads(read_user_text(path, "envelope"))
     except tomllib.TOMLDecodeError as e:
         raise ValueError(f"envelope: {path} is not valid TOML ({e})") from None
     if set(data) != {"envelope"} or not isinstance(data["envelope"], dict):

@@ -70,6 +70,7 @@ from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
 from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
+from gripper.core.user_files import read_user_text
 
 DESIGNS = ("one_at_a_time", "factorial", "latin_hypercube")
 RESPONSES: dict[str, dict[str, type]] = {
@@ -247,13 +248,9 @@ def load_study(path: str | Path) -> Study:
     shipped = STUDIES_DIR / f"{path.name}.toml"
     if not path.exists() and path.suffix == "" and path.parent == Path(".") and shipped.is_file():
         path = shipped
+    text = read_user_text(path, "study")
     try:
-        text = path.read_text()
         data = tomllib.loads(text)
-    except OSError as e:
-        raise ValueError(f"study: cannot read {path} ({e.strerror})") from None
-    except UnicodeDecodeError:
-        raise ValueError(f"study: {path} is not a text file (not UTF-8); a study file is TOML") from None
     except tomllib.TOMLDecodeError as e:
         raise ValueError(f"study: {path} is not valid TOML ({e})") from None
 
