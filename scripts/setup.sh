@@ -13,3 +13,10 @@ if ! { .venv/bin/python -m pip install --quiet --upgrade pip && \
   echo "setup: installing the package into .venv failed (pip's output above)" >&2
   exit 1
 fi
+# mediapy (the package's video reader and writer) looks for an `ffmpeg` program on PATH; the
+# environment's own is imageio-ffmpeg's binary. Link it into .venv/bin, so an activated
+# environment reads and writes video with no system ffmpeg (`import gripper` also points
+# mediapy at it: gripper.render.backend).
+if [ ! -e .venv/bin/ffmpeg ]; then
+  ln -s "$(.venv/bin/python -c 'import imageio_ffmpeg; print(imageio_ffmpeg.get_ffmpeg_exe())')" .venv/bin/ffmpeg
+fi

@@ -99,13 +99,26 @@ def test_import_gripper_lets_mediapy_read_video_without_system_ffmpeg(tmp_path):
     from gripper.render.video import write_video
     out = tmp_path / "own.mp4"
     write_video(_synthetic_frames(n=5), out, fps=10)
-    env = {**os.environ, "PATH": os.path.dirname(sys.executable)}  # no ffmpeg on it
+    env = {**os.environ, "PATH": str(tmp_path / "empty")}  # no ffmpeg on it (not even the venv's link)
     for code in ("import sys, gripper; assert 'mediapy' not in sys.modules and 'imageio_ffmpeg' not in sys.modules; "
                  "import mediapy; print(len(mediapy.read_video(sys.argv[1])))",
                  "import sys, mediapy, gripper; print(len(mediapy.read_video(sys.argv[1])))"):
         res = subprocess.run([sys.executable, "-c", code, str(out)], capture_output=True, text=True, env=env,
                              timeout=120)
         assert res.returncode == 0 and res.stdout.strip() == "5", res.stdout + res.stderr
+
+
+def test_the_activated_environment_reads_video_with_mediapy_alone(tmp_path):
+    """The project's environment as `source .venv/bin/activate` leaves it (its bin/ on PATH):
+    mediapy alone, with no gripper import, reads the tool's MP4 through the ffmpeg link that
+    scripts/setup.sh puts there."""
+    from gripper.render.video import write_video
+    out = tmp_path / "own.mp4"
+    write_video(_synthetic_frames(n=5), out, fps=10)
+    env = {**os.environ, "PATH": os.path.dirname(sys.executable)}
+    code = "import sys, mediapy; print(len(mediapy.read_video(sys.argv[1])))"
+    res = subprocess.run([sys.executable, "-c", code, str(out)], capture_output=True, text=True, env=env, timeout=120)
+    assert res.returncode == 0 and res.stdout.strip() == "5", res.stdout + res.stderr
 
 
 def test_fixed_cameras_frame_the_gripper_from_home_to_hold():
