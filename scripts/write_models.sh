@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerate gripper/data/soft_gripper from the default parameters.
+# Regenerate models/soft_gripper (the MJCF the trials run) from the default parameters.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh

@@ -78,11 +78,13 @@ def test_environment_id_follows_its_version_history():
 
 
 def test_the_committed_models_are_package_data():
-    from gripper.core.resources import DATA_DIR, MODEL_DIR, STUDIES_DIR
+    from gripper.core.resources import DATA_DIR, DEFAULT_CALIBRATION_DIR, MODEL_DIR, STUDIES_DIR
 
     assert DATA_DIR.is_relative_to(PACKAGE)
-    for path in (MODEL_DIR / "soft_gripper.xml", MODEL_DIR / "calibration.json",
-                 STUDIES_DIR / "one_at_a_time.toml"):
+    for path in (MODEL_DIR / "soft_gripper.xml", DEFAULT_CALIBRATION_DIR / "calibration.json",
+                 STUDIES_DIR / "one_at_a_time.toml", ROOT / "models" / "soft_gripper" / "scene.xml"):
         assert path.is_file(), path
+    assert (PACKAGE / "models").resolve() == (ROOT / "models").resolve()  # one copy: the top-level one
+    assert not list((ROOT / "models" / "soft_gripper").glob("calibration*"))  # lives with the calibration
     pyproject = (ROOT / "pyproject.toml").read_text()
-    assert '"data/**/*"' in pyproject, "package data must ship gripper/data in the wheel"
+    assert '"data/**/*"' in pyproject and '"models/**/*"' in pyproject, "the wheel must ship both"

@@ -2,10 +2,11 @@ import mujoco
 import pytest
 
 from gripper.core.params import DEG, GripperParams
+from gripper.core.resources import MODEL_DIR as REPO_MODELS
 from gripper.experiments.smoke import random_control_rollout
 from gripper.model.builders import build_scene_spec
 from gripper.model.closure import teeth_lock_angle
-from gripper.model.menagerie import REPO_MODELS, generate_model_files, readme_with_table
+from gripper.sim.model_files import generate_model_files, readme_with_table
 
 
 def test_committed_models_match_fresh_generation():
@@ -15,6 +16,52 @@ def test_committed_models_match_fresh_generation():
         assert committed == text, f"{name} is stale: run scripts/write_models.sh"
     readme = (REPO_MODELS / "README.md").read_text()
     assert readme == readme_with_table(readme), "model README table is stale"
+
+
+def test_the_committed_scene_is_the_model_the_trials_run():
+    """``python -m mujoco.viewer --mjcf models/soft_gripper/scene.xml`` shows the trials' model:
+    the committed scene and the trial scene (no object) compile to the same numbers, every
+    physical and visual array of MjModel (names aside)."""
+    import numpy as np
+
+    from gripper.sim.scene import grasp_scene_spec, trial_params
+
+    committed = mujoco.MjModel.from_xml_path(str(REPO_MODELS / "scene.xml"))
+    trial = grasp_scene_spec(trial_params(GripperParams())).compile()
+    assert committed.opt.timestep == trial.opt.timestep == 0.002
+    assert committed.opt.integrator == trial.opt.integrator == mujoco.mjtIntegrator.mjINT_DISCRETE
+    compared = 0
+    for field in dir(trial):
+        value = getattr(trial, field, None)
+        if field.startswith(("_", "name", "text", "paths")) or not isinstance(value, np.ndarray) \
+                or value.dtype == object:
+            continue
+        other = getattr(committed, field)
+        if field == "site_size":  # a sphere site has one size; the XML leaves the unused two at MuJoCo's 0.005
+            sphere = trial.site_type == mujoco.mjtGeom.mjGEOM_SPHERE
+            other, value = other.copy(), value.copy()
+            other[sphere, 1:] = value[sphere, 1:] = 0
+        assert other.shape == value.shape and np.allclose(other, value, rtol=1e-5, atol=1e-9, equal_nan=True), field
+        compared += 1
+    assert compared > 300
+    for k in range(trial.njnt):
+        assert committed.joint(k).name == trial.joint(k).name
+
+
+def test_the_committed_files_use_classes_and_materials():
+    """Menagerie's way: the gripper's bodies take the model's class, the servos and hinges share
+    theirs, and colours come from named materials, not repeated rgba."""
+    text = (REPO_MODELS / "soft_gripper.xml").read_text()
+    scene = (REPO_MODELS / "scene.xml").read_text()
+    assert '<include file="soft_gripper.xml"/>' in scene and "<body" not in scene
+    assert 'childclass="soft_gripper"' in text
+    assert text.count('class="servo"') == 1 + 4  # the class and the four servos that take it
+    assert text.count("dynprm=") == 1  # the dcmotor's numbers stand once, in the class
+    for name in ("silicone", "palm", "cable"):
+        assert f'<material name="{name}"' in text
+    assert text.count("rgba=") == 2 + 3  # the collision and pad classes, the three materials
+    for name in ("README.md", "CHANGELOG.md", "LICENSE"):
+        assert (REPO_MODELS / name).is_file(), name
 
 
 def test_committed_scene_loads():

@@ -2,7 +2,7 @@
 
 Subcommands: ``bend`` (paper 000's bending test), ``servo`` (servo model against its
 datasheet), ``params`` (write the default parameter file), ``write-models`` (regenerate
-``gripper/data/soft_gripper``), ``check`` (step the scene under random servo commands), ``bench``
+``models/soft_gripper``), ``check`` (step the scene under random servo commands), ``bench``
 (the grasp benchmark), ``pullout`` (holding force), ``video`` (render one trial), ``train``
 (PPO or SAC on the environment) and ``play`` (video of a trained policy).
 
@@ -129,10 +129,13 @@ def _cmd_params(args) -> int:
 
 
 def _cmd_write_models(args) -> int:
-    from gripper.model.menagerie import REPO_MODELS, write_model_files
+    from gripper.sim.model_files import GRIPPER_FILE, SCENE_FILE, default_model_dir, write_model_files
 
-    out = check_output_dir(args.out or REPO_MODELS,
-                           files=("soft_gripper.xml", "scene.xml", "README.md"))
+    target = args.out or default_model_dir()
+    if target is None:
+        raise ValueError("--out: give a folder (outside a source checkout there is no models/ to refresh, "
+                         "and the installed package's copy is not written to)")
+    out = check_output_dir(target, files=(GRIPPER_FILE, SCENE_FILE, "README.md"))
     for path in write_model_files(out, _params(args, simulates=False)):
         print(f"wrote {path}")
     return 0
@@ -320,7 +323,7 @@ def _cmd_calibrate(args) -> int:
             raise ValueError("--write-default: takes no --params, --data or --reference (it "
                              "calibrates the default design on the continuum reference)")
         cal = write_default_calibration(on_progress=lambda m: print(m, file=sys.stderr))
-        print(f"wrote gripper/data/soft_gripper/calibration.json: stiffness "
+        print(f"wrote gripper/data/calibration/default/calibration.json: stiffness "
               f"{', '.join(f'{k:.4g}' for k in cal.stiffness)} N·m/rad")
         return 0
     from gripper.calibration.pipeline import DEFAULT_FILES
@@ -551,10 +554,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_params)
 
     w = with_params(sub.add_parser(
-        "write-models", help="regenerate gripper/data/soft_gripper",
-        description="Write the gripper's MJCF (soft_gripper.xml, scene.xml) for the parameters, and "
-                    "refresh the model README's parameter table, into --out."))
-    w.add_argument("--out", metavar="DIR", help="output folder (default gripper/data/soft_gripper)")
+        "write-models", help="regenerate models/soft_gripper (the MJCF the trials run)",
+        description="Write the gripper's MJCF (soft_gripper.xml, scene.xml) for the parameters, as "
+                    "the trials run it, and refresh the model README's parameter table, into --out."))
+    w.add_argument("--out", metavar="DIR",
+                   help="output folder (default: the source checkout's models/soft_gripper; an installed "
+                        "package's own copy is never written)")
     w.set_defaults(func=_cmd_write_models)
 
     c = with_params(sub.add_parser(
@@ -649,7 +654,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="skip the mesh-convergence study and its stiffness correction (quick looks)")
     cal.add_argument("--write-default", action="store_true",
                      help="regenerate the default design's committed calibration in "
-                          "gripper/data/soft_gripper (about 6 minutes on 2 cores)")
+                          "gripper/data/calibration/default (about 6 minutes on 2 cores)")
     cal.add_argument("--write-surrogate", action="store_true",
                      help="regenerate the committed stiffness surrogate of the design studies "
                           "(gripper/data/studies/stiffness_surrogate.json: six convergence studies "

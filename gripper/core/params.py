@@ -3,7 +3,7 @@
 Every field states its unit. Numbers from paper 000 ("Dynamic Modeling and Grasping Application
 of a Cable-Driven Soft Actuator") and paper 001 cite their table; dimensions the papers do not
 give (their figures are lost) are chosen here and the reason is written beside them and in
-``gripper/data/soft_gripper/README.md``.
+``models/soft_gripper/README.md``.
 
 Example:
     >>> from gripper.core.params import GripperParams
@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any, Self
 
 from gripper.core.fields import FieldSpec, Validated, check_fields, field_specs, param
-from gripper.core.resources import MODEL_DIR
+from gripper.core.resources import DEFAULT_CALIBRATION_DIR
 from gripper.core.servo import SERVO_PRESETS, ServoDatasheet, servo_datasheet
 from gripper.core.units import DEG
 from gripper.core.user_files import read_user_text
@@ -35,7 +35,7 @@ PAPER_HINGE_STIFFNESS = 1.9e-3 / DEG
 PAPER_HINGE_STIFFNESS_PER_RAD_READING = 1.9e-3
 # The committed calibration of the default design (``gripper calibrate --write-default``): the
 # default hinge springs are its fitted values. A test fails when it is stale.
-DEFAULT_CALIBRATION_FILE = MODEL_DIR / "calibration.json"
+DEFAULT_CALIBRATION_FILE = DEFAULT_CALIBRATION_DIR / "calibration.json"
 # How a closed cut resists further closing (HingeSprings.closure).
 CLOSURE_MODELS = ("teeth", "stiffness", "rigid")
 # Named spring sets of the command line's --springs (HingeSprings.paper's readings).

@@ -1,13 +1,14 @@
-"""Files shipped with the package (package data under ``gripper/data``), found the same way in a
-source checkout and in an installed wheel.
+"""Files shipped with the package, found the same way in a source checkout and in an installed
+wheel.
 
-Layout (MuJoCo Menagerie style for the model):
-
-- ``soft_gripper/``: the committed MJCF (``soft_gripper.xml``, ``scene.xml``), its README and
-  CHANGELOG, and the default design's calibration (``calibration.json`` and its report);
-- ``studies/``: example study files and the committed stiffness surrogate;
-- ``calibration/``: an example bench-data CSV for ``gripper calibrate --data``;
-- ``objects/``: the built-in grasp objects' object files.
+- ``models/soft_gripper/`` (the repository's top-level ``models/``, reached through the package's
+  ``gripper/models`` link and carried inside the wheel): the gripper's MJCF in MuJoCo Menagerie
+  layout: ``soft_gripper.xml``, ``scene.xml`` (which includes it), README, CHANGELOG, LICENSE;
+- ``gripper/data/calibration/``: an example bench-data CSV for ``gripper calibrate --data``, and
+  ``default/``, the default design's committed calibration (``calibration.json``, its
+  reference run, convergence study, error table and report);
+- ``gripper/data/studies/``: example study files and the committed stiffness surrogate;
+- ``gripper/data/objects/``: the built-in grasp objects' object files.
 """
 
 from __future__ import annotations
@@ -15,8 +16,19 @@ from __future__ import annotations
 from importlib.resources import files
 from pathlib import Path
 
-DATA_DIR = Path(str(files("gripper").joinpath("data")))
-MODEL_DIR = DATA_DIR / "soft_gripper"
+PACKAGE_DIR = Path(str(files("gripper")))
+DATA_DIR = PACKAGE_DIR / "data"
+MODELS_DIR = PACKAGE_DIR / "models"
+MODEL_DIR = MODELS_DIR / "soft_gripper"
 STUDIES_DIR = DATA_DIR / "studies"
 CALIBRATION_EXAMPLES_DIR = DATA_DIR / "calibration"
+DEFAULT_CALIBRATION_DIR = CALIBRATION_EXAMPLES_DIR / "default"
 OBJECTS_DIR = DATA_DIR / "objects"
+
+
+def checkout_models_dir() -> Path | None:
+    """The repository's top-level ``models/`` when the package runs from a source checkout (an
+    editable install), else None: an installed wheel's copy is never written to."""
+    if (PACKAGE_DIR / "models").is_symlink():
+        return (PACKAGE_DIR / "models").resolve()
+    return None

@@ -79,7 +79,8 @@ CABLE_SOLIMP = (0.99, 0.99, 0.001, 0.5, 2.0)
 
 
 def add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.MjsDefault]:
-    """Menagerie-style default classes: root, visual, collision, hinge, pad."""
+    """Menagerie-style default classes (root, visual, collision, hinge, pad, servo) and the named
+    materials the visual geoms and cables use."""
     root = spec.add_default(MODEL_NAME, spec.default)
     visual = spec.add_default("visual", root)
     visual.geom.contype = 0
@@ -108,7 +109,20 @@ def add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.MjsD
     pad.site.type = mujoco.mjtGeom.mjGEOM_BOX
     pad.site.group = 4
     pad.site.rgba = [0.1, 0.8, 0.1, 0.3]
-    return {"root": root, "visual": visual, "collision": collision, "hinge": hinge, "pad": pad}
+    # The servo: every finger's dcmotor shares its datasheet and position loop (add_servo)
+    servo = spec.add_default("servo", root)
+    _set_dcmotor(servo.actuator, p)
+    add_materials(spec)
+    return {"root": root, "visual": visual, "collision": collision, "hinge": hinge, "pad": pad, "servo": servo}
+
+
+# Named materials of the visual geoms and the cables (Menagerie's grippers name theirs too).
+MATERIALS = {"silicone": SILICONE_RGBA, "palm": PALM_RGBA, "cable": CABLE_RGBA}
+
+
+def add_materials(spec: mujoco.MjSpec) -> None:
+    for name, rgba in MATERIALS.items():
+        spec.add_material(name=name, rgba=list(rgba))
 
 
 def _set_rigid_stop(owner, p: GripperParams) -> None:
@@ -139,7 +153,7 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
     mount.add_site(name=f"{prefix}_cable_guide", pos=[-GUIDE_DEPTH, 0, zc], size=[0.001] * 3)
     reel = mount.add_body(name=names.reel, pos=[-REEL_DEPTH, 0, zc])
     reel.add_geom(defaults["visual"], name=f"{prefix}_reel_drum", type=mujoco.mjtGeom.mjGEOM_SPHERE,
-                  size=[0.003, 0, 0], mass=REEL_MASS, rgba=list(CABLE_RGBA))
+                  size=[0.003, 0, 0], mass=REEL_MASS, material="cable")
     reel.add_joint(name=names.reel, type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[-1, 0, 0],
                    limited=mujoco.mjtLimited.mjLIMITED_TRUE,
                    range=[-0.002, p.servo.datasheet.travel * p.servo.spool_radius + 0.002])
@@ -173,8 +187,7 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
             stop.wrap_joint(hinge_name, 1.0)
             _set_rigid_stop(stop, p)
         seg.add_geom(defaults["visual"], name=f"{prefix}_seg{j}_visual",
-                     type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}",
-                     rgba=list(SILICONE_RGBA))
+                     type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}", material="silicone")
         seg.add_geom(defaults["collision"], name=f"{prefix}_seg{j}_collision",
                      type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}")
         prof = element_profile(g, kind)
@@ -197,8 +210,8 @@ def straight_cable_length(p: GripperParams) -> float:
     return REEL_DEPTH + p.finger.length
 
 
-def add_servo(spec: mujoco.MjSpec, p: GripperParams, name: str, reel_joint: str) -> None:
-    """The servo as a MuJoCo ``dcmotor`` on the reel's slide joint.
+def _set_dcmotor(act, p: GripperParams) -> None:
+    """The servo as a MuJoCo ``dcmotor`` (on an actuator or the ``servo`` default class).
 
     Gear 1/spool radius makes the actuator length the spool angle [rad] and its force the output
     torque [N·m] (cable tension = torque / spool radius). ``nominal`` = (supply voltage, stall
@@ -209,7 +222,6 @@ def add_servo(spec: mujoco.MjSpec, p: GripperParams, name: str, reel_joint: str)
     ds = p.servo.datasheet
     kp, kd = ds.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
                          damping_ratio=p.servo.damping_ratio)
-    act = spec.add_actuator(name=name, target=reel_joint, trntype=mujoco.mjtTrn.mjTRN_JOINT)
     act.set_to_dcmotor(motorconst=[0, 0], resistance=0,
                        nominal=[ds.voltage, ds.stall_torque, ds.no_load_speed],
                        controller=[kp, 0.0, kd, p.servo.slew_rate, 0.0, ds.voltage],
@@ -220,11 +232,23 @@ def add_servo(spec: mujoco.MjSpec, p: GripperParams, name: str, reel_joint: str)
     act.ctrlrange = [0.0, ds.travel]
 
 
-def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames) -> None:
+def add_servo(spec: mujoco.MjSpec, p: GripperParams, name: str, reel_joint: str,
+              servo_class: mujoco.MjsDefault | None = None) -> None:
+    """The servo on the reel's slide joint: of class ``servo`` (:func:`add_defaults`) if given,
+    else with its dcmotor set here (:func:`_set_dcmotor`)."""
+    if servo_class is not None:
+        spec.add_actuator(servo_class, name=name, target=reel_joint, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+        return
+    act = spec.add_actuator(name=name, target=reel_joint, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+    _set_dcmotor(act, p)
+
+
+def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames,
+                    servo_class: mujoco.MjsDefault | None = None) -> None:
     """The cable tendon of one finger and the servo that reels it in, plus their sensors."""
     g = p.finger
     ten = spec.add_tendon(name=names.cable, width=0.5 * p.cable.diameter,
-                          rgba=list(CABLE_RGBA), frictionloss=p.cable.friction_loss,
+                          material="cable", frictionloss=p.cable.friction_loss,
                           limited=mujoco.mjtLimited.mjLIMITED_TRUE,
                           range=[0.0, straight_cable_length(p)])
     ten.solimp_limit = list(CABLE_SOLIMP)
@@ -236,7 +260,7 @@ def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames) -
             ten.wrap_site(f"{names.prefix}_tip_anchor" if role == "anchor"
                           else f"{names.prefix}_seg{j}_cable")
 
-    add_servo(spec, p, names.servo, names.reel)
+    add_servo(spec, p, names.servo, names.reel, servo_class)
 
     S = mujoco.mjtSensor
     for h in names.hinges:
@@ -340,7 +364,7 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
     add_element_meshes(spec, p)
 
     lift = p.lift
-    palm = spec.worldbody.add_body(name="palm", pos=[0, 0, lift.home_height])
+    palm = spec.worldbody.add_body(name="palm", pos=[0, 0, lift.home_height], childclass=MODEL_NAME)
     # The stage's own controller holds the palm's weight (integral action of a real linear
     # stage); the fingers keep their weight and sag under it.
     palm.gravcomp = 1.0
@@ -354,7 +378,7 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
     radius = p.layout.palm_radius + p.finger.height + 0.004
     palm.add_geom(defaults["visual"], name="palm_visual", type=mujoco.mjtGeom.mjGEOM_CYLINDER,
                   size=[radius, 0.5 * p.layout.palm_thickness, 0],
-                  pos=[0, 0, 0.5 * p.layout.palm_thickness], rgba=list(PALM_RGBA))
+                  pos=[0, 0, 0.5 * p.layout.palm_thickness], material="palm")
     palm.add_geom(defaults["collision"], name="palm_collision",
                   type=mujoco.mjtGeom.mjGEOM_CYLINDER,
                   size=[radius, 0.5 * p.layout.palm_thickness, 0],
@@ -365,7 +389,7 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
     for k in range(p.layout.n_fingers):
         pos, quat = finger_mount_pose(p, k)
         names = add_finger(spec, palm, p, finger_name(k), pos, quat, defaults)
-        add_cable_drive(spec, p, names)
+        add_cable_drive(spec, p, names, defaults["servo"])
 
     for name, _ in axes:
         act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
@@ -390,6 +414,20 @@ def build_scene_spec(p: GripperParams, *, with_object: bool = True) -> mujoco.Mj
     The test block is the object library's ``block`` (its size, mass and friction).
     """
     spec = build_gripper_spec(p)
+    add_scene_dressing(spec)
+    if with_object:
+        block = get_object("block")
+        obj = spec.worldbody.add_body(name="object", pos=[0, 0, block.size[2]])
+        obj.add_freejoint(name="object_free")
+        obj.add_geom(name="object_geom", type=mujoco.mjtGeom.mjGEOM_BOX,
+                     size=list(block.size), mass=block.mass, friction=[block.friction, 0.005, 1e-4],
+                     rgba=[0.2, 0.5, 0.8, 1])
+    return spec
+
+
+def add_scene_dressing(spec: mujoco.MjSpec) -> None:
+    """Floor, light, the ``front`` and ``side`` cameras and the offscreen buffer: what the scene
+    adds to the gripper (the committed ``scene.xml`` holds exactly this beside its include)."""
     spec.visual.global_.offwidth = 640
     spec.visual.global_.offheight = 480
     spec.visual.headlight.ambient = [0.4, 0.4, 0.4]
@@ -404,14 +442,6 @@ def build_scene_spec(p: GripperParams, *, with_object: bool = True) -> mujoco.Mj
                             material="grid", friction=[0.8, 0.005, 1e-4])
     spec.worldbody.add_camera(name="front", pos=[0, -0.45, 0.2], xyaxes=[1, 0, 0, 0, 0.3, 1])
     spec.worldbody.add_camera(name="side", pos=[0.45, 0, 0.2], xyaxes=[0, 1, 0, -0.3, 0, 1])
-    if with_object:
-        block = get_object("block")
-        obj = spec.worldbody.add_body(name="object", pos=[0, 0, block.size[2]])
-        obj.add_freejoint(name="object_free")
-        obj.add_geom(name="object_geom", type=mujoco.mjtGeom.mjGEOM_BOX,
-                     size=list(block.size), mass=block.mass, friction=[block.friction, 0.005, 1e-4],
-                     rgba=[0.2, 0.5, 0.8, 1])
-    return spec
 
 
 def build_bending_spec(p: GripperParams, *, timestep: float | None = None) -> mujoco.MjSpec:
@@ -433,7 +463,7 @@ def build_bending_spec(p: GripperParams, *, timestep: float | None = None) -> mu
     rot = np.column_stack([[1, 0, 0], [0, 0, -1], [0, 1, 0]]).astype(float)
     mujoco.mju_mat2Quat(quat, rot.ravel())
     names = add_finger(spec, spec.worldbody, p, "f0", [0, 0, 0.1], quat, defaults)
-    add_cable_drive(spec, p, names)
+    add_cable_drive(spec, p, names, defaults["servo"])
     spec.worldbody.add_camera(name="top", pos=[0.05, 0.03, 0.35], xyaxes=[1, 0, 0, 0, 1, 0])
     tune_soft_limits(spec, p)
     return spec

@@ -6,7 +6,8 @@ import mujoco
 
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
-from gripper.model.builders import build_scene_spec
+from gripper.core.timesteps import TRIAL_TIMESTEP
+from gripper.model.builders import build_gripper_spec, build_scene_spec
 from gripper.model.closure import tune_closure_limits
 from gripper.objects.library import (
     GraspObject,
@@ -22,13 +23,16 @@ _LIMITS: dict[str, list[tuple[str, list[float], list[float]]]] = {}
 _LIMITS_KEPT = 8
 
 
-def grasp_scene_spec(p: GripperParams, *, with_object: bool = False) -> mujoco.MjSpec:
-    """The gripper scene as grasp trials step it: ``discrete`` integrator (see objects), with the
-    closed cuts matched to their design under that integrator (:mod:`gripper.model.closure`;
-    the match is computed once per design and process, then reused)."""
-    spec = build_scene_spec(p, with_object=with_object)
+def trial_params(p: GripperParams, timestep: float = TRIAL_TIMESTEP) -> GripperParams:
+    """``p`` at the trials' step (:data:`gripper.core.timesteps.TRIAL_TIMESTEP` unless given)."""
+    return p if p.sim.timestep == timestep else p.replace(sim=p.sim.replace(timestep=timestep))
+
+
+def _as_trials_run(spec: mujoco.MjSpec, p: GripperParams, key: str) -> mujoco.MjSpec:
+    """``spec`` with the ``discrete`` integrator (see objects) and the closed cuts matched to
+    their design under that integrator (:mod:`gripper.model.closure`; the match is computed
+    once per design and process, then reused)."""
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
-    key = stable_hash([p.to_dict(), with_object])
     if key not in _LIMITS:
         tune_closure_limits(spec, p, spec.compile())
         if len(_LIMITS) >= _LIMITS_KEPT:
@@ -40,6 +44,21 @@ def grasp_scene_spec(p: GripperParams, *, with_object: bool = False) -> mujoco.M
         j.solref_limit = solref
         j.solimp_limit = solimp
     return spec
+
+
+def trial_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
+    """The gripper alone as trials step it: the committed ``models/soft_gripper/soft_gripper.xml``
+    is this spec for the default design at the trials' step (:mod:`gripper.sim.model_files`)."""
+    return _as_trials_run(build_gripper_spec(p), p, stable_hash([p.to_dict(), "gripper"]))
+
+
+def grasp_scene_spec(p: GripperParams, *, with_object: bool = False) -> mujoco.MjSpec:
+    """The gripper scene as grasp trials step it: :func:`trial_gripper_spec` with the floor,
+    light and cameras (``with_object``: and the library's block under the palm). The closed
+    cuts' match depends on the joints' inverse inertias only, which the floor does not change,
+    so the scene's joints are the gripper file's (a test compares the compiled models)."""
+    spec = build_scene_spec(p, with_object=with_object)
+    return _as_trials_run(spec, p, stable_hash([p.to_dict(), with_object]))
 
 
 def build_grasp_scene(p: GripperParams, obj: GraspObject, place: Placement) -> mujoco.MjModel:
