@@ -25,11 +25,9 @@ Example:
 
 from __future__ import annotations
 
-import csv
 import dataclasses
 import json
 import math
-import os
 import statistics
 import time
 from collections.abc import Mapping, Sequence
@@ -41,7 +39,7 @@ import numpy as np
 
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
 from gripper.bench.execution import open_run, read_jsonl, run_ordered
-from gripper.core.atomic import write_atomic
+from gripper.core.atomic import write_atomic, write_csv_atomic, write_text_atomic
 from gripper.core.fields import Validated
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
@@ -223,18 +221,11 @@ SUMMARY_COLUMNS = ("object", "trials", "errors", "successes", "success_rate", "c
 
 def write_summary(out: Path, summary: dict) -> None:
     """Write ``summary.json`` and ``summary.csv`` atomically (temp file, then rename)."""
-    tmp = out / "summary.json.tmp"
-    tmp.write_text(json.dumps(summary, indent=2, sort_keys=True))
-    os.replace(tmp, out / "summary.json")
-    tmp = out / "summary.csv.tmp"
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(SUMMARY_COLUMNS)
-        for obj, s in summary["objects"].items():
-            w.writerow([obj, s["trials"], s["errors"], s["successes"], s["success_rate"], s["ci95"][0],
-                        s["ci95"][1], s["damage_rate"], s["median_peak_force_N"], s["p95_peak_force_N"],
-                        s["mean_wall_time_s"], s["warnings"]])
-    os.replace(tmp, out / "summary.csv")
+    write_text_atomic(out / "summary.json", json.dumps(summary, indent=2, sort_keys=True))
+    write_csv_atomic(out / "summary.csv", SUMMARY_COLUMNS, (
+        [obj, s["trials"], s["errors"], s["successes"], s["success_rate"], s["ci95"][0], s["ci95"][1],
+         s["damage_rate"], s["median_peak_force_N"], s["p95_peak_force_N"], s["mean_wall_time_s"], s["warnings"]]
+        for obj, s in summary["objects"].items()))
 
 
 def format_table(summary: dict) -> str:

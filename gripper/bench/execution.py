@@ -92,7 +92,7 @@ def claim_run_dir(out: Path, filename: str, key: str, h: str, payload: dict, wha
                   files: tuple[str, ...] = ()) -> None:
     """Create ``out`` and record the run's identity in ``out/filename`` ({key}_hash, {key},
     versions); an existing record with another hash is refused (ValueError naming ``--out``)."""
-    from gripper.core.atomic import check_output_dir
+    from gripper.core.atomic import check_output_dir, write_text_atomic
     from gripper.core.provenance import versions
 
     check_output_dir(out, files=(filename, *files))
@@ -107,10 +107,8 @@ def claim_run_dir(out: Path, filename: str, key: str, h: str, payload: dict, wha
             raise ValueError(f"--out: {out} holds {what} (hash {old.get(f'{key}_hash')} vs {h}); choose a new "
                              "--out folder, or delete that folder to start over")
         return
-    tmp = cfile.with_suffix(".tmp")
-    tmp.write_text(json.dumps({f"{key}_hash": h, key: payload, "versions": versions()},
-                              indent=2, sort_keys=True, default=str))
-    os.replace(tmp, cfile)
+    write_text_atomic(cfile, json.dumps({f"{key}_hash": h, key: payload, "versions": versions()},
+                                        indent=2, sort_keys=True, default=str))
 
 
 def executor(workers: int, scheduler: str | None):

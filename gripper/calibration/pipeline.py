@@ -27,6 +27,7 @@ import shutil
 import tempfile
 from collections.abc import Callable
 from dataclasses import asdict, replace
+from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -35,6 +36,7 @@ from gripper.calibration.fit import FitConfig, FitResult, check_held_out, fit_hi
 from gripper.calibration.measured import read_measured_csv
 from gripper.calibration.reference import BendingRecord, ReferenceConfig, run_reference
 from gripper.calibration.report import write_report
+from gripper.core.atomic import write_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import DEFAULT_CALIBRATION_FILE, GripperParams
 
@@ -279,8 +281,7 @@ def write_default_calibration(on_progress=None) -> Calibration:
         for name in DEFAULT_FILES:
             src = Path(tmp) / "default" / name
             if src.exists():
-                shutil.copyfile(src, folder / f".{name}.tmp")
-                (folder / f".{name}.tmp").replace(folder / name)
+                write_atomic(folder / name, partial(shutil.copyfile, src))
     return cal
 
 

@@ -40,6 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
+from gripper.core.atomic import write_text_atomic
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
 
@@ -187,11 +188,7 @@ class StiffnessSurrogate:
                 "loo_error_max": float(self.loo_error.max()), "correction": self.correction}
 
     def save(self, path: str | Path = SURROGATE_FILE) -> Path:
-        path = Path(path)
-        tmp = path.with_name(path.name + ".tmp")
-        tmp.write_text(json.dumps(self.to_json_dict(), indent=1) + "\n")
-        tmp.replace(path)
-        return path
+        return write_text_atomic(path, json.dumps(self.to_json_dict(), indent=1) + "\n")
 
     @classmethod
     def load(cls, path: str | Path) -> StiffnessSurrogate:

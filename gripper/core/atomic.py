@@ -8,9 +8,10 @@ Example:
 
 from __future__ import annotations
 
+import csv
 import os
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 
 
@@ -30,6 +31,26 @@ def write_atomic(out: Path, write: Callable[[str], object]) -> None:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def write_text_atomic(out: str | Path, text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``out`` atomically (:func:`write_atomic`)."""
+    out = Path(out)
+    write_atomic(out, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    return out
+
+
+def write_csv_atomic(out: str | Path, header: Sequence[str], rows: Iterable[Sequence]) -> Path:
+    """Write a CSV of ``header`` and ``rows`` to ``out`` atomically (:func:`write_atomic`)."""
+    out = Path(out)
+
+    def write(tmp: str) -> None:
+        with open(tmp, "w", newline="", encoding="utf-8") as f:
+            w = csv.writer(f)
+            w.writerow(header)
+            w.writerows(rows)
+    write_atomic(out, write)
+    return out
 
 
 def _nearest_existing(path: Path) -> Path:

@@ -18,16 +18,16 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Self
 
+from gripper.core.atomic import write_text_atomic
 from gripper.core.fields import FieldSpec, Validated, check_fields, field_specs, param
 from gripper.core.resources import DEFAULT_CALIBRATION_DIR
 from gripper.core.servo import SERVO_PRESETS, ServoDatasheet, servo_datasheet
 from gripper.core.units import DEG
-from gripper.core.user_files import read_user_text
+from gripper.core.user_files import read_user_data
 
 # paper 000, Table 2: torsion spring stiffness 1.9e-3 N·m/deg = 0.1089 N·m/rad, as printed. The
 # unit is suspect (see docs/consistency.md): read per radian it is 1.9e-3 N·m/rad.
@@ -505,10 +505,7 @@ class GripperParams(Validated):
             text = _to_toml(self.to_dict())
         else:
             raise ValueError(f"parameter file: suffix must be .json or .toml, got {path.name!r}")
-        tmp = path.with_name(path.name + ".tmp")
-        tmp.write_text(text)
-        tmp.replace(path)
-        return path
+        return write_text_atomic(path, text)
 
     @classmethod
     def load(cls, path: str | Path) -> GripperParams:
@@ -518,17 +515,7 @@ class GripperParams(Validated):
             ValueError: unreadable or malformed file, or invalid values.
         """
         path = Path(path)
-        text = read_user_text(path, "parameter file")
-        try:
-            if path.suffix == ".toml":
-                data = tomllib.loads(text)
-            elif path.suffix == ".json":
-                data = json.loads(text)
-            else:
-                raise ValueError(f"parameter file: suffix must be .json or .toml, got {path.name!r}")
-        except (json.JSONDecodeError, tomllib.TOMLDecodeError) as e:
-            msg = str(e).splitlines()[0]
-            raise ValueError(f"parameter file: {path.name} is malformed: {msg}") from None
+        data = read_user_data(path, "parameter file")
         if not data:
             raise ValueError(f"parameter file: {path} sets no parameter; give the fields to change "
                              "('gripper params --out FILE' writes them all)")

@@ -41,14 +41,12 @@ Example:
 
 from __future__ import annotations
 
-import json
 import math
-import tomllib
 from pathlib import Path
 from typing import Any
 
 from gripper.core.fields import check_safe_name
-from gripper.core.user_files import read_user_text
+from gripper.core.user_files import read_user_data
 from gripper.objects.library import (
     DAMAGE_CRITERIA,
     DEFAULT_MESH_POINTS,
@@ -83,12 +81,7 @@ def load_object_file(path: str | Path) -> GraspObject:
         ValueError: one line naming the file, the key and what is allowed.
     """
     path = Path(path)
-    text = read_user_text(path, "object file")
-    try:
-        data = json.loads(text) if path.suffix == ".json" else tomllib.loads(text)
-    except (json.JSONDecodeError, tomllib.TOMLDecodeError) as e:
-        raise ValueError(f"object file {path}: not valid {path.suffix[1:].upper()} "
-                         f"({str(e).splitlines()[0]})") from None
+    data = read_user_data(path, "object file")
     return object_from_dict(data, where=f"object file {path}", base=path.parent)
 
 

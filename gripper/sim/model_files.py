@@ -26,7 +26,7 @@ from pathlib import Path
 
 import mujoco
 
-from gripper.core.atomic import write_atomic
+from gripper.core.atomic import write_text_atomic
 from gripper.core.params import GripperParams, parameter_rows
 from gripper.core.resources import MODEL_DIR, checkout_models_dir
 from gripper.model.builders import MODEL_NAME, add_scene_dressing
@@ -103,13 +103,10 @@ def write_model_files(out_dir: str | Path | None = None, params: GripperParams |
     out.mkdir(parents=True, exist_ok=True)
     written = []
     for name, text in generate_model_files(params).items():
-        write_atomic(out / name, lambda tmp, text=text: Path(tmp).write_text(text))
-        written.append(out / name)
+        written.append(write_text_atomic(out / name, text))
     readme = out / "README.md"
     if readme.exists():
-        text = readme_with_table(readme.read_text(), params)
-        write_atomic(readme, lambda tmp: Path(tmp).write_text(text))
-        written.append(readme)
+        written.append(write_text_atomic(readme, readme_with_table(readme.read_text(), params)))
     return written
 
 

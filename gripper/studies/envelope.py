@@ -37,21 +37,18 @@ Example:
 
 from __future__ import annotations
 
-import csv
 import dataclasses
 import json
 import math
-import os
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from gripper.bench.defaults import DEFAULT_WORKERS
-from gripper.core.atomic import write_atomic
+from gripper.core.atomic import write_atomic, write_csv_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
-from gripper.core.user_files import read_user_text
+from gripper.core.user_files import read_user_data
 from gripper.experiments.protocol import GRIP_TENSION, GraspProtocol, TrialNoise
 from gripper.objects.library import GraspObject
 
@@ -151,10 +148,7 @@ def load_envelope(path: str | Path, **overrides) -> Envelope:
     shipped = STUDIES_DIR / f"envelope_{path.name}.toml"
     if not path.exists() and path.suffix == "" and path.parent == Path(".") and shipped.is_file():
         path = shipped
-    try:
-        data = tomllib.loads(read_user_text(path, "envelope"))
-    except tomllib.TOMLDecodeError as e:
-        raise ValueError(f"envelope: {path} is not valid TOML ({e})") from None
+    data = read_user_data(path, "envelope", (".toml",))
     if set(data) != {"envelope"} or not isinstance(data["envelope"], dict):
         raise ValueError(f"envelope: {path}: expected one [envelope] table, got {sorted(data)}")
     spec = dict(data["envelope"])
@@ -214,13 +208,7 @@ COLUMNS = ("shape", "size_m", "mass_kg", "friction", "index", "status", "success
 
 def write_table(records: list[dict], path: Path) -> None:
     """Tidy CSV: one row per trial."""
-    tmp = path.with_suffix(".tmp")
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(COLUMNS)
-        for r in records:
-            w.writerow([r.get(c) for c in COLUMNS])
-    os.replace(tmp, path)
+    write_csv_atomic(path, COLUMNS, ([r.get(c) for c in COLUMNS] for r in records))
 
 
 def held_fractions(records: list[dict]) -> dict[int, float | None]:

@@ -54,7 +54,6 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
-import os
 import re
 import time
 import tomllib
@@ -66,6 +65,7 @@ from typing import Any
 import numpy as np
 
 from gripper.bench.defaults import DEFAULT_WORKERS
+from gripper.core.atomic import write_csv_atomic, write_text_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
@@ -510,28 +510,22 @@ def run_study(study: Study, out: str | Path, *, workers: int = DEFAULT_WORKERS, 
     records = [done[i] for i in range(len(points))]
     write_table(records, study, out / "results.csv")
     write_plots(records, study, out)
-    (out / "recommendations.md").write_text(recommendations(records, study))
+    write_text_atomic(out / "recommendations.md", recommendations(records, study))
     return records
 
 
 def write_table(records: list[dict], study: Study, path: Path) -> None:
     """Tidy CSV: one row per point and metric, with the varied parameters as columns."""
-    import csv
-
     keys = list(study.vary)
-    tmp = path.with_suffix(".tmp")
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["point", *keys, "status", "calibrated", "metric", "value", "error"])
-        for r in records:
-            vals = [r["changes"].get(k, _get(study.base, k)) for k in keys]
-            vals = [v[0] if isinstance(v, tuple | list) else v for v in vals]
-            if r["status"] != "ok":
-                w.writerow([r["point"], *vals, "error", "", "", "", r.get("error", "")])
-                continue
-            for name, value in r["metrics"].items():
-                w.writerow([r["point"], *vals, "ok", r["calibrated"], name, value, ""])
-    os.replace(tmp, path)
+    rows = []
+    for r in records:
+        vals = [r["changes"].get(k, _get(study.base, k)) for k in keys]
+        vals = [v[0] if isinstance(v, tuple | list) else v for v in vals]
+        if r["status"] != "ok":
+            rows.append([r["point"], *vals, "error", "", "", "", r.get("error", "")])
+            continue
+        rows += [[r["point"], *vals, "ok", r["calibrated"], name, value, ""] for name, value in r["metrics"].items()]
+    write_csv_atomic(path, ["point", *keys, "status", "calibrated", "metric", "value", "error"], rows)
 
 
 def _series(records: list[dict], study: Study, key: str) -> list[tuple[float, dict]]:
