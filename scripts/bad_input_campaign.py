@@ -24,9 +24,9 @@ from pathlib import Path
 
 GRIPPER = [sys.executable, "-m", "gripper.cli.main"]
 NUMBERS = ["-1", "0", "1e9", "nan", "inf", "-inf", "1e400", "abc", ""]
-PATHS = ["", "/proc/no_such/x", "EXISTING_FILE", "EXISTING_DIR"]
+PATHS = ["", "/proc/no_such/x", "EXISTING_FILE", "EXISTING_DIR", "x" * 300]
 NAMES = ["", ",", "x" * 5000, "../../etc/passwd", "block,block", "nope"]
-FILES = ["", "missing.toml", "BINARY.toml", "EMPTY.toml", "EXISTING_DIR"]
+FILES = ["", "missing.toml", "BINARY.toml", "EMPTY.toml", "EXISTING_DIR", "x" * 300 + ".toml"]
 
 # command: (cheap valid argv, {option: values})
 CASES = {

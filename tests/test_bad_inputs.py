@@ -85,12 +85,18 @@ CASES = [
     (["bench", "--objects", "../../etc/evil", "--out", "r"], "unknown object"),
     (["envelope", "--sizes", "0.03,0.03", "--out", "r"], "--sizes"),
     (["envelope", "--masses", "-1", "--out", "r"], "--masses"),
+    # names longer than the file system allows (255 bytes)
+    (["bench", "--objects", "block", "--out", "x" * 300], "--out"),
+    (["bench", "--objects", "block", "--plot", "x" * 300 + ".png", "--out", "r"], "--plot"),
+    (["bench", "--params", "x" * 300 + ".toml", "--out", "r"], "parameter file"),
+    (["study", "x" * 300 + ".toml", "--out", "r"], "name too long"),
+    (["envelope", "x" * 300 + ".toml", "--out", "r"], "name too long"),
     # calibration inputs
     (["calibrate", "--data", str(EXAMPLE_CSV), "--held-out", "99", "--out", "r"], "--held-out"),
 ]
 
 
-@pytest.mark.parametrize("argv,word", CASES, ids=[" ".join(a)[:60] for a, _ in CASES])
+@pytest.mark.parametrize("argv,word", CASES, ids=[" ".join(a)[:60] + f" [{k}]" for k, (a, _) in enumerate(CASES)])
 def test_refused_in_one_line(argv, word, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     _setup(tmp_path)

@@ -92,6 +92,18 @@ def _probe_folder(folder: Path, flag: str, shown: Path) -> None:
                 pass
 
 
+def _stat_or_refuse(path: Path, flag: str) -> None:
+    """Refuse a path the system cannot even look up (a name over 255 bytes, a path over 4096),
+    which ``Path.exists`` raises on instead of answering."""
+    try:
+        os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        return
+    except OSError as e:
+        shown = str(path) if len(str(path)) <= 60 else f"{str(path)[:60]}... ({len(str(path))} characters)"
+        raise ValueError(f"{flag}: cannot use {shown}: {_why(e)}") from None
+
+
 def _refuse_empty(path: str | Path, flag: str) -> Path:
     if not str(path).strip():
         raise ValueError(f"{flag}: empty path; give a file or folder name")
@@ -109,6 +121,7 @@ def check_output_dir(path: str | Path, flag: str = "--out", files: tuple[str, ..
         ValueError: one line naming ``flag``, the path and what is wrong.
     """
     out = _refuse_empty(path, flag)
+    _stat_or_refuse(out, flag)
     if out.exists() and not out.is_dir():
         raise ValueError(f"{flag}: {out} is an existing file; give a folder (new or a run's own)")
     anc = _nearest_existing(out)
@@ -138,6 +151,7 @@ def check_output_file(path: str | Path, flag: str, suffixes: tuple[str, ...] = (
         ValueError: one line naming ``flag``, the path and what is wrong.
     """
     out = _refuse_empty(path, flag)
+    _stat_or_refuse(out, flag)
     if suffixes and out.suffix.lower() not in suffixes:
         raise ValueError(f"{flag}: {out} must end in {' or '.join(suffixes)}")
     if out.is_dir():

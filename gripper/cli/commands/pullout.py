@@ -1,0 +1,66 @@
+"""``gripper pullout``: holding force."""
+
+from __future__ import annotations
+
+from gripper.cli.inputs import (
+    number,
+    numbers,
+)
+from gripper.cli.options import (
+    design,
+    object_specs,
+    with_params,
+)
+from gripper.core.atomic import check_output_file
+from gripper.experiments.protocol import (
+    POLICIES,
+    PULL_MAX,
+    PULL_RATE,
+    GraspProtocol,
+)
+
+
+def add(sub) -> None:
+    po = with_params(sub.add_parser(
+        "pullout", help="holding force: pull the held object until it slips 5 mm",
+        description="Grasp and lift as in a trial, then pull the object straight down at --rate until it "
+                    "slips 5 mm; with the controller, once per --grip-tension set-point."))
+    po.add_argument("--objects", default="block,cylinder", help="comma-separated names")
+    po.add_argument("--policy", choices=POLICIES, default=GraspProtocol().policy,
+                    help="controller (default) or per_object closing")
+    po.add_argument("--grip-tension", default=str(GraspProtocol().grip_tension), metavar="N[,N...]",
+                    help="controller set-points [N], comma-separated (default %(default)s)")
+    po.add_argument("--plot", metavar="FILE.png", help="also write holding force against set-point")
+    number(po, "--rate", float, lo=0, lo_open=True, hi=1000, default=PULL_RATE, help="pull ramp [N/s]")
+    number(po, "--max-force", float, lo=0, lo_open=True, hi=1000, default=PULL_MAX, help="largest pull [N]")
+    po.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from gripper.experiments.protocol import GraspProtocol
+    from gripper.experiments.pullout import run_pullout
+
+    objects = object_specs(args.objects)
+    policy = args.policy
+    base = GraspProtocol(policy=policy)
+    grips = numbers(args.grip_tension, "--grip-tension", lo=0, lo_open=True) if policy == "controller" else (
+        base.grip_tension,)
+    protos = [base.replace(grip_tension=g) for g in grips]
+    if args.plot:
+        check_output_file(args.plot, "--plot", (".png",))
+    params = design(args)
+    results = []
+    for name in objects:
+        for proto in protos:
+            res = run_pullout(name, params=params, protocol=proto, rate=args.rate, max_force=args.max_force)
+            results.append(res)
+            bound = ">=" if res["held_at_max"] else ""
+            grip = f"grip {res['grip_tension_N']:g} N: " if res["grip_tension_N"] is not None else "per_object: "
+            print(f"{name:<10} {grip}holding force {bound}{res['holding_force_N']:.2f} N "
+                  f"(pull ramp {res['rate_N_per_s']:g} N/s until {res['slip_m'] * 1e3:g} mm slip)")
+    if args.plot:
+        from gripper.render.figures import holding_force_plot
+
+        holding_force_plot(results, args.plot)
+        print(f"wrote {args.plot}")
+    return 0

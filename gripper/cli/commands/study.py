@@ -1,0 +1,37 @@
+"""``gripper study``: a design-parameter study."""
+
+from __future__ import annotations
+
+from gripper.cli.options import (
+    check_runner,
+    with_runner,
+)
+from gripper.core.atomic import check_output_dir
+
+
+def add(sub) -> None:
+    st = sub.add_parser(
+        "study", help="design-parameter study from a TOML file (paper 001's method)",
+        description="Vary design parameters (one at a time, factorial or Latin hypercube), compute the "
+                    "responses of every design point on Dask, and write results.jsonl, results.csv, one "
+                    "plot per parameter and recommendations.md into --out. Rerunning resumes.")
+    st.add_argument("file", metavar="FILE.toml",
+                    help="a study file, or a shipped study by name: one_at_a_time, latin_hypercube")
+    st.add_argument("--out", required=True, metavar="DIR", help="run folder (new, or the study's own to resume)")
+    with_runner(st)
+    st.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from gripper.studies.study import RUN_FILES, load_study, run_study
+
+    check_output_dir(args.out, files=RUN_FILES)
+    study = load_study(args.file)
+    check_runner(args)
+    records = run_study(study, args.out, workers=args.workers, scheduler=args.scheduler,
+                        progress=not args.no_progress)
+    failed = sum(r["status"] != "ok" for r in records)
+    print((open(f"{args.out}/recommendations.md").read()).rstrip())
+    print(f"{len(records)} design points ({failed} failed); wrote {args.out}/results.jsonl, results.csv, "
+          "plot_*.png, recommendations.md")
+    return 0

@@ -1,0 +1,130 @@
+"""Options and input handling that several commands share: the design (``--params``,
+``--springs``, ``--calibration``), the trial protocol and noise, the runner (workers, scheduler),
+object lists and the exit codes.
+"""
+
+from __future__ import annotations
+
+from gripper.bench.defaults import DEFAULT_WORKERS
+from gripper.bench.execution import check_scheduler
+from gripper.cli.inputs import WORKERS_MAX, field_option, names, number
+from gripper.core.params import GripperParams
+from gripper.experiments.protocol import APPROACHES, GRASP_CHOICES, POLICIES, GraspProtocol, TrialNoise
+
+EXIT_BAD_INPUT = 2
+EXIT_UNSTABLE = 3
+EXIT_BROKEN_PIPE = 1
+EXIT_FAILED = 1  # the system failed a write (a full disk): not the input's fault
+EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report a command ended by Ctrl-C
+
+
+def design(args, *, simulates: bool = True) -> GripperParams:
+    """The parameters the options give; ``simulates``: also check, before any work and any file,
+    that the design can be stepped at all (:func:`gripper.sim.preflight.check_design`)."""
+    p = _read_params(args)
+    if simulates:
+        from gripper.sim.preflight import check_design
+
+        check_design(p, "--params" if args.params else "--calibration")
+    return p
+
+
+def _read_params(args) -> GripperParams:
+    p = GripperParams.load(args.params) if args.params else GripperParams().validate()
+    springs = getattr(args, "springs", "calibrated")
+    if springs != "calibrated":
+        if getattr(args, "calibration", None):
+            raise ValueError("--springs: give either --springs or --calibration, not both")
+        from gripper.core.params import HingeSprings
+
+        reading = "per_degree" if springs == "paper" else "per_radian"
+        p = p.replace(springs=HingeSprings.paper(reading, closure=p.springs.closure,
+                                                 closure_stiffness=p.springs.closure_stiffness))
+        p = p.validate()
+    if getattr(args, "calibration", None):
+        from gripper.calibration.calfile import apply_calibration
+
+        p = apply_calibration(p, args.calibration, force=args.force_calibration)
+    return p
+
+
+def object_specs(text: str, flag: str = "--objects") -> tuple[str, ...]:
+    """Object specs, each resolved once here so a bad one is refused before any work."""
+    from gripper.objects.library import get_object
+
+    specs = names(text, flag)
+    for spec in specs:
+        try:
+            get_object(spec)
+        except ValueError as e:
+            text = str(e)
+            raise ValueError(f"{flag}: {text.removeprefix('objects: ')}") from None
+    return specs
+
+
+def check_runner(args) -> None:
+    """Refuse an unreachable --scheduler before any work (--workers is bounded by its type)."""
+    check_scheduler(args.scheduler)
+
+
+def protocol_and_noise(args):
+    proto = GraspProtocol(close_command_scale=args.close_scale, release=args.release, policy=args.policy,
+                          grip_tension=args.grip_tension, approach=args.approach, grasp=args.grasp,
+                          centre=not args.no_centre).validate()
+    noise = TrialNoise(xy=args.noise, mass_frac=args.mass_noise, friction_frac=args.friction_noise).validate()
+    return proto, noise
+
+
+def needs_rl(command: str) -> None:
+    import importlib.util
+
+    if importlib.util.find_spec("stable_baselines3") is None or importlib.util.find_spec("torch") is None:
+        raise ValueError(f"{command}: needs the rl extra (stable-baselines3 and torch): "
+                         "pip install 'gripper[rl]' (in this repository: .venv/bin/pip install -e '.[rl]')")
+
+
+def with_protocol(p):
+    proto = GraspProtocol()
+    field_option(p, "--noise", TrialNoise, "xy", "x/y placement noise half-range [m]")
+    field_option(p, "--mass-noise", TrialNoise, "mass_frac", "mass noise fraction, e.g. 0.2")
+    field_option(p, "--friction-noise", TrialNoise, "friction_frac", "friction noise fraction")
+    p.add_argument("--policy", choices=POLICIES, default=proto.policy,
+                   help="controller: close each finger until its cable tension reaches --grip-tension, "
+                        "knowing nothing of the object; per_object: each object's own closing command "
+                        "(default %(default)s)")
+    field_option(p, "--grip-tension", GraspProtocol, "grip_tension",
+                 "the controller's grip set-point: cable tension per finger [N]", metavar="N")
+    field_option(p, "--close-scale", GraspProtocol, "close_command_scale",
+                 "per_object: multiplier on each object's closing command, >1 squeezes harder")
+    p.add_argument("--release", action="store_true", help="open the fingers at the end of each trial")
+    p.add_argument("--approach", choices=APPROACHES, default=proto.approach,
+                   help="sensed: the palm camera finds the object; catalogue: the object's size, centred "
+                        "under the palm (0.11.0's rule) (default %(default)s)")
+    p.add_argument("--grasp", choices=GRASP_CHOICES, default=proto.grasp,
+                   help="auto: the fingertip grasp where the tips reach the table beside the object, else "
+                        "the envelope; or force one (default %(default)s)")
+    p.add_argument("--no-centre", action="store_true",
+                   help="sensed approach: do not centre the palm over the sensed object")
+    return p
+
+def with_runner(p):
+    number(p, "--workers", int, lo=1, hi=WORKERS_MAX, default=DEFAULT_WORKERS, help="local worker processes")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return p
+
+def with_params(p):
+    p.add_argument("--params", metavar="FILE",
+                   help="gripper parameter file (.json or .toml); defaults if omitted")
+    p.add_argument("--calibration", metavar="FILE",
+                   help="calibration file from 'gripper calibrate': its fitted hinge springs "
+                        "replace those of the parameters")
+    p.add_argument("--force-calibration", action="store_true",
+                   help="apply --calibration even if it was made for another design")
+    from gripper.core.params import SPRING_SETS
+
+    p.add_argument("--springs", choices=SPRING_SETS, default="calibrated",
+                   help="hinge springs: the committed calibration (default), or paper 000's "
+                        "Table 2 spring read as printed (paper: 1.9e-3 N·m/deg) or per "
+                        "radian (paper_per_radian), for comparison")
+    return p
