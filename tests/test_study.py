@@ -9,7 +9,8 @@ from helpers import kill_after_lines
 
 from gripper.cli.main import main
 from gripper.core.params import GripperParams
-from gripper.studies.study import apply_point, blocked_tip_force, gent_modulus, load_study
+from gripper.experiments.design_responses import blocked_tip_force
+from gripper.studies.study import apply_point, gent_modulus, load_study
 
 STUDY = """
 [study]

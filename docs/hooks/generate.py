@@ -7,7 +7,8 @@
 - ``<!-- sensing-table -->``: the servo sensing model's fields, likewise;
 - ``<!-- depth-camera-table -->``: the palm depth camera's fields, likewise;
 - ``<!-- rl-hyperparams -->``: the RL baselines' hyper-parameters (``gripper.rl.hyperparams``);
-- ``<!-- version -->``: the package's version.
+- ``<!-- version -->``: the package's version;
+- ``<!-- env-arguments -->``: the environment's arguments (``EnvConfig``'s fields and the rest).
 
 The API pages' examples drop their ``# doctest: +SKIP`` markers (they keep the examples that
 run simulations out of a doctest run; a reader needs only the example).
@@ -80,6 +81,25 @@ def _rl_hyperparams() -> str:
     return "\n".join(lines)
 
 
+def _env_arguments() -> str:
+    """The environment's arguments: EnvConfig's declared fields, then the others."""
+    from gripper.envs.grasp_env import RENDER_ARGUMENTS
+    from gripper.envs.task import DEFAULT_REWARD_WEIGHTS, EnvConfig
+
+    rows = [_fields_table(((EnvConfig, "env"),)).replace("| env.", "| ")]
+    rows += ['| objects | ("block", "cylinder") | - | library names, object files or "a,b" | sampled per episode '
+             "with the environment's generator; rigid objects are fastest |",
+             f"| reward_weights | {DEFAULT_REWARD_WEIGHTS} | - | any of these keys, finite | overrides some dense "
+             "reward weights |",
+             "| params | GripperParams() | - | a GripperParams or a .toml/.json parameter file | the design |",
+             "| calibration | None | - | a calibration JSON from gripper calibrate | its fitted hinge springs "
+             "replace those of params |"]
+    meaning = {"render_mode": "rgb_array, depth_array or human (needs a display)", "width": "image width [px]",
+               "height": "image height [px]", "camera": "front, side, top, track (follows the palm) or palm"}
+    rows += [f"| {k} | {v!r} | - | {meaning[k]} | the renderer's |" for k, v in RENDER_ARGUMENTS.items()]
+    return "\n".join(rows)
+
+
 def _version() -> str:
     from importlib.metadata import version
 
@@ -87,6 +107,7 @@ def _version() -> str:
 
 
 MARKERS = {"<!-- rl-hyperparams -->": _rl_hyperparams, "<!-- version -->": _version,
+           "<!-- env-arguments -->": _env_arguments,
            "<!-- cli-reference -->": _cli_reference, "<!-- trial-record-schema -->": _schema,
            "<!-- protocol-table -->": _protocol_table, "<!-- sensing-table -->": _sensing_table,
            "<!-- depth-camera-table -->": _depth_camera_table}

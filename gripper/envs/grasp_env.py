@@ -5,6 +5,7 @@ Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGr
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from typing import Any
 
@@ -13,8 +14,8 @@ import numpy as np
 from gymnasium import spaces
 
 from gripper.core.params import GripperParams
-from gripper.envs.core import (
-    PALM_SPEED,
+from gripper.envs.registration import ENV_ID
+from gripper.envs.task import (
     BatchStepper,
     EnvConfig,
     EpisodeState,
@@ -25,50 +26,57 @@ from gripper.envs.core import (
     start_episode,
     unstable_result,
 )
-from gripper.envs.registration import ENV_ID
 
 # "human" (MuJoCo's viewer window) is offered only where a display exists
 RENDER_MODES = ["rgb_array", "depth_array"] + (
     ["human"] if os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY") else [])
 
 
-def make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode, xy_actions,
-                frame_skip, reward_type, reward_weights, terminate_on_success, success_hold_s,
-                params, calibration=None, palm_control="velocity", palm_speed=PALM_SPEED,
-                servo_control="velocity") -> EnvConfig:
+# The environment's own arguments besides EnvConfig's fields: the design as a parameter file
+# and a calibration file (``params`` also takes a GripperParams), and the renderer's.
+DESIGN_ARGUMENTS = ("params", "calibration")
+RENDER_ARGUMENTS = {"render_mode": None, "width": 640, "height": 480, "camera": "front"}
+
+
+def make_config(**kwargs: Any) -> EnvConfig:
+    """The validated :class:`EnvConfig` of keyword arguments named as its fields (``objects`` may
+    be "a,b"), plus ``params`` (a GripperParams or a parameter file) and ``calibration``.
+
+    Raises:
+        ValueError: an unknown argument (naming the allowed ones) or a bad value.
+    """
+    allowed = [f.name for f in dataclasses.fields(EnvConfig)] + ["calibration"]
+    unknown = sorted(set(kwargs) - set(allowed))
+    if unknown:
+        raise ValueError(f"{ENV_ID}: unknown argument {', '.join(unknown)}; allowed: "
+                         f"{', '.join(allowed)}, {', '.join(RENDER_ARGUMENTS)}")
+    kwargs = dict(kwargs)
+    objects = kwargs.get("objects")
     if isinstance(objects, str):
-        objects = tuple(o.strip() for o in objects.split(",") if o.strip())
+        kwargs["objects"] = tuple(o.strip() for o in objects.split(",") if o.strip())
+    elif objects is not None:
+        kwargs["objects"] = tuple(objects)
+    params = kwargs.pop("params", None)
     if params is None:
         params = GripperParams()
     elif not isinstance(params, GripperParams):
         params = GripperParams.load(params)
+    calibration = kwargs.pop("calibration", None)
     if calibration is not None:
         from gripper.calibration.calfile import apply_calibration
         params = apply_calibration(params, calibration)
-    return EnvConfig(
-        objects=tuple(objects), pose_noise=pose_noise, yaw_noise=yaw_noise, mass_noise=mass_noise,
-        friction_noise=friction_noise, action_mode=action_mode, xy_actions=xy_actions,
-        palm_control=palm_control, palm_speed=palm_speed, servo_control=servo_control,
-        frame_skip=frame_skip, reward_type=reward_type, reward_weights=dict(reward_weights or {}),
-        terminate_on_success=terminate_on_success, success_hold_s=success_hold_s, params=params,
-    ).validate()
+    if kwargs.get("reward_weights") is None:
+        kwargs.pop("reward_weights", None)
+    else:
+        kwargs["reward_weights"] = dict(kwargs["reward_weights"])
+    return EnvConfig(params=params, **kwargs).validate()
 
 
 def env_arguments(**kwargs) -> dict:
-    """Bind keyword arguments to :class:`SoftGripperGraspEnv`'s signature (its defaults, and a
-    clear error for an unknown one); return them with the validated ``config``."""
-    import inspect
-
-    sig = inspect.signature(SoftGripperGraspEnv.__init__)
-    try:
-        bound = sig.bind(None, **kwargs)
-    except TypeError as e:
-        raise ValueError(f"{ENV_ID}: {e}") from None
-    bound.apply_defaults()
-    a = dict(bound.arguments)
-    a.pop("self")
-    a["config"] = make_config(**{k: a[k] for k in inspect.signature(make_config).parameters})
-    return a
+    """Split keyword arguments into the renderer's (with their defaults) and the validated
+    ``config`` (:func:`make_config`)."""
+    render = {k: kwargs.pop(k, default) for k, default in RENDER_ARGUMENTS.items()}
+    return {**render, "config": make_config(**kwargs)}
 
 
 def check_render_args(render_mode, width, height, camera) -> None:
@@ -220,29 +228,11 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v5", **kwargs)``:
-
-    | argument | default | meaning |
-    |---|---|---|
-    | objects | ("block", "cylinder") | library names (or "a,b") sampled per episode; rigid objects are fastest |
-    | pose_noise | 0.010 | x/y offset range ± [m], at most 0.02 |
-    | yaw_noise | True | random yaw for objects that are not symmetric |
-    | mass_noise, friction_noise | 0.0 | ± fractions on the object's mass and friction |
-    | action_mode | "fingers" | "fingers" or "synergy" |
-    | xy_actions | False | add palm x/y set-points to the action |
-    | frame_skip | 10 | physics steps (2 ms) per control step: 20 ms control period |
-    | reward_type | "dense" | "dense" or "sparse" |
-    | reward_weights | see Rewards | dict overriding some weights |
-    | palm_control | "velocity" | "velocity" or "position" (see Action space) |
-    | palm_speed | 0.10 | palm speed at a velocity action of ±1 [m/s] |
-    | servo_control | "velocity" | "velocity" or "position" (see Action space) |
-    | terminate_on_success | False | end the episode once the grasp is held |
-    | success_hold_s | 1.0 | hold time that counts as success [s] |
-    | params | None | GripperParams, or a JSON/TOML parameter file path |
-    | calibration | None | calibration JSON (``gripper calibrate``): fitted hinge springs for ``params`` |
-    | render_mode | None | "rgb_array", "depth_array" or "human" (needs a display) |
-    | width, height | 640, 480 | image size [px] |
-    | camera | "front" | "front", "side", "top", "track" (follows the palm) or "palm" |
+    ``gymnasium.make("gripper:SoftGripperGrasp-v5", **kwargs)``: the fields of
+    :class:`gripper.envs.task.EnvConfig` (each declared once there, with its unit, range and
+    reason; the table is generated into ``docs/environment.md``), ``params`` (a GripperParams or
+    a parameter file), ``calibration`` (a ``gripper calibrate`` file) and the renderer's
+    ``render_mode``, ``width``, ``height``, ``camera``.
 
     ## Version history
 
@@ -296,26 +286,14 @@ class SoftGripperGraspEnv(gym.Env):
 
     metadata = {"render_modes": RENDER_MODES, "render_fps": 50}
 
-    def __init__(self, objects=("block", "cylinder"), pose_noise: float = 0.010, yaw_noise: bool = True,
-                 mass_noise: float = 0.0, friction_noise: float = 0.0, action_mode: str = "fingers",
-                 xy_actions: bool = False, frame_skip: int = 10, reward_type: str = "dense",
-                 reward_weights: dict | None = None, terminate_on_success: bool = False,
-                 success_hold_s: float = 1.0, params: Any = None, render_mode: str | None = None,
-                 width: int = 640, height: int = 480, camera: str = "front", calibration: Any = None,
-                 palm_control: str = "velocity", palm_speed: float = PALM_SPEED,
-                 servo_control: str = "velocity"):
-        self.config = make_config(objects, pose_noise, yaw_noise, mass_noise, friction_noise, action_mode,
-                                  xy_actions, frame_skip, reward_type, reward_weights, terminate_on_success,
-                                  success_hold_s, params, calibration, palm_control, palm_speed,
-                                  servo_control)
+    def __init__(self, render_mode: str | None = None, width: int = 640, height: int = 480, camera: str = "front",
+                 **kwargs: Any):
+        self.config = make_config(**kwargs)
         check_render_args(render_mode, width, height, camera)
-        self._init_kwargs = dict(
-            objects=self.config.objects, pose_noise=pose_noise, yaw_noise=yaw_noise, mass_noise=mass_noise,
-            friction_noise=friction_noise, action_mode=action_mode, xy_actions=xy_actions,
-            frame_skip=frame_skip, reward_type=reward_type, reward_weights=reward_weights,
-            terminate_on_success=terminate_on_success, success_hold_s=success_hold_s,
-            palm_control=palm_control, palm_speed=palm_speed, servo_control=servo_control,
-            params=self.config.params, render_mode=render_mode, width=width, height=height, camera=camera)
+        # what rebuilds this environment (pickling, vector copies): the validated config's own
+        # fields, so a file path given as params travels as the parameters it held
+        self._init_kwargs = {**{f.name: getattr(self.config, f.name) for f in dataclasses.fields(EnvConfig)},
+                             "render_mode": render_mode, "width": width, "height": height, "camera": camera}
         self.render_mode, self.width, self.height, self.camera = render_mode, width, height, camera
         self.metadata = {**self.metadata, "render_fps": int(round(1.0 / self.config.control_period))}
         self.observation_structure, self.observation_space, self.action_space = make_spaces(self.config)
@@ -405,7 +383,7 @@ class SoftGripperGraspEnv(gym.Env):
     def __getstate__(self):
         episode = None
         if self._ep is not None:
-            from gripper.envs.core import state_vector
+            from gripper.envs.task import state_vector
             ep = self._ep
             episode = dict(object=ep.scene.obj.name, placement=vars(ep.placement).copy(),
                            qstate=state_vector(ep), ctrl=ep.data.ctrl.copy(),
@@ -427,7 +405,7 @@ def restore_episode(scenes: SceneSet, st: dict) -> EpisodeState:
     """Rebuild an episode from its pickled form (object, placement, state, bookkeeping)."""
     import mujoco
 
-    from gripper.envs.core import Scene, load_state
+    from gripper.envs.task import Scene, load_state
     from gripper.objects.library import Placement
     obj = next(o for o in scenes.objects if o.name == st["object"])  # any spec form: by its name
     place = Placement(**st["placement"])

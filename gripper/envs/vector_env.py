@@ -27,8 +27,8 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from gripper.envs.core import BatchStepper, SceneSet, evaluate, observe, start_episode, unstable_result
 from gripper.envs.grasp_env import RENDER_MODES, check_action, check_render_args, env_arguments, make_spaces
+from gripper.envs.task import BatchStepper, SceneSet, evaluate, observe, start_episode, unstable_result
 
 
 class SoftGripperGraspVectorEnv(VectorEnv):

@@ -147,6 +147,13 @@ class BendingConfig(Validated):
         check_step_budget(self.duration, self.timestep, "bend.duration")
 
 
+def is_held(height: float, slip: float, protocol: GraspProtocol) -> bool:
+    """The held-grasp rule, the one definition the benchmark, the envelope and the environment
+    use: the object ``height`` [m] above its start, at least ``protocol.success_height``, and
+    ``slip`` [m] relative to the palm below ``protocol.max_slip``."""
+    return height >= protocol.success_height and slip < protocol.max_slip
+
+
 # Pull-out test (gripper.experiments.pullout): load ramp rate [N/s], the largest load tried [N]
 # and the slip that ends it [m]. 20 N/s keeps the test quasi-static (the grasp's slowest mode,
 # the object swinging in the fingers, is ≈ 5 Hz) and reaches the 100 N cap in 5 s.

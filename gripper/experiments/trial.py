@@ -32,7 +32,7 @@ from gripper.core.provenance import versions
 from gripper.core.units import DEG
 from gripper.experiments.approach import ApproachPlan, fingertip_palm_z, plan_approach
 from gripper.experiments.controller import GripController, check_grip_tension
-from gripper.experiments.protocol import GraspProtocol, TrialNoise
+from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
 from gripper.experiments.record import TrialRecord
 from gripper.objects.library import (
     GraspObject,
@@ -261,7 +261,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
     def check(name):
         h = probe.object_pos(d)[2] - start[2]
         slip = float(np.linalg.norm(rel(d) - rel_lift))
-        phase_ok[name] = (h >= proto.success_height and slip < proto.max_slip, h, slip)
+        phase_ok[name] = (is_held(h, slip, proto), h, slip)
 
     check("lift")
     max_slip = [0.0]

@@ -22,6 +22,20 @@ def damage_measure(m, d, obj, probe, *, peak_strain: float, peak_force: float) -
     return peak_force
 
 
+def running_damage_measure(m, d, obj, probe, *, peak_strain: float, total_force: float) -> float:
+    """The damage measure where it must be read at every step (the environment): as
+    :func:`damage_measure`, except that the paper box, whose permanent dent needs a spring-back
+    simulation, counts any plastic bending of its card (a crease) as damage, which is stricter:
+    twice the limit once any plastic strain exists, else 0."""
+    if obj.kind == "paper_box":
+        a = m.flex_plasticadr[probe.flex]
+        crease = float(np.abs(d.plastic[a:]).max()) if d.plastic.size else 0.0
+        return obj.damage_limit * 2.0 if crease > 0.0 else 0.0
+    if obj.kind in STRAIN_DAMAGE_KINDS:
+        return peak_strain
+    return total_force
+
+
 def permanent_dent(m: mujoco.MjModel, d: mujoco.MjData, probe: ObjectProbe) -> float:
     """Largest permanent deviation of the box shell from its rest shape [m].
 

@@ -58,7 +58,6 @@ import re
 import time
 import tomllib
 from dataclasses import dataclass, field
-from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -69,8 +68,8 @@ from gripper.core.atomic import write_csv_atomic, write_text_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
-from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
 from gripper.core.user_files import read_user_text
+from gripper.experiments.design_responses import measure_responses
 
 DESIGNS = ("one_at_a_time", "factorial", "latin_hypercube")
 RESPONSES: dict[str, dict[str, type]] = {
@@ -394,93 +393,16 @@ def metric_names(responses: dict) -> list[str]:
     return names
 
 
-# --- responses -------------------------------------------------------------------------------
-
-# Samples of the bending curve kept per point (r from 0 to r_max).
-BEND_CURVE_POINTS = 21
-# Blocked-force test: ramp the servo to the commanded shortening over this time, then hold [s];
-# both well past the finger's slowest mode (≈ 0.05 s) so the force is static.
-BLOCKED_RAMP_S = 0.5
-BLOCKED_HOLD_S = 0.5
-
-
-def _bending(p: GripperParams, opts: dict):
-    from gripper.experiments.bending import BendingConfig, run_bending_test
-
-    cfg = BendingConfig(r_max=float(opts.get("r_max", 0.45)), duration=float(opts.get("duration", 2.0)),
-                        n_points=BEND_CURVE_POINTS)
-    return run_bending_test(cfg, p)
-
-
-def blocked_tip_force(p: GripperParams, r: float) -> float:
-    """Tip force [N] of one finger whose tip is held at its straight position (a ball joint to
-    the world) while the servo reels in ``r`` × finger length of cable (quasi-static)."""
-    import mujoco
-
-    from gripper.model.builders import build_bending_spec
-    from gripper.model.names import FingerNames
-    from gripper.sim.stability import check_stable
-
-    spec = build_bending_spec(p, timestep=PAPER_BENDING_TIMESTEP)
-    names = FingerNames("f0", p.finger.n_segments)
-    m0 = spec.compile()
-    d0 = mujoco.MjData(m0)
-    mujoco.mj_forward(m0, d0)
-    tip_body = m0.body(names.bodies[-1]).id
-    anchor = d0.xmat[tip_body].reshape(3, 3).T @ (d0.site_xpos[m0.site(names.tip).id] - d0.xpos[tip_body])
-    spec.add_equality(type=mujoco.mjtEq.mjEQ_CONNECT, objtype=mujoco.mjtObj.mjOBJ_BODY,
-                      name1=names.bodies[-1], name2="world", data=list(anchor) + [0.0] * 9)
-    m = spec.compile()
-    d = mujoco.MjData(m)
-    servo = m.actuator(names.servo).id
-    target = r * p.finger.length * m.actuator_gear[servo, 0]
-    if target > m.actuator_ctrlrange[servo, 1]:
-        raise ValueError(f"blocked_force.r: {r} needs more than the servo's travel with this spool")
-    n_ramp, n_hold = int(BLOCKED_RAMP_S / m.opt.timestep), int(BLOCKED_HOLD_S / m.opt.timestep)
-    for k in range(n_ramp + n_hold):
-        d.ctrl[servo] = target * min(1.0, (k + 1) / n_ramp)
-        mujoco.mj_step(m, d)
-    check_stable(m, d, "blocked-force test")
-    mujoco.mj_forward(m, d)
-    rows = d.efc_type[:d.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY
-    return float(np.linalg.norm(d.efc_force[:d.nefc][rows]))
-
-
 def run_point(study: Study, index: int, changes: dict) -> dict:
-    """Every response of one design point; errors are recorded, not raised."""
+    """Every response of one design point (:func:`gripper.experiments.design_responses.measure_responses`);
+    errors are recorded, not raised."""
     t0 = time.perf_counter()
-    met: dict[str, float | None] = {}
-    rec: dict[str, Any] = {"point": index, "changes": changes, "status": "ok", "metrics": met, "curves": {}}
+    rec: dict[str, Any] = {"point": index, "changes": changes, "status": "ok", "metrics": {}, "curves": {}}
     try:
         p, reasons = apply_point(study.base, changes)
         rec["calibrated"] = not reasons
         rec["calibration_note"] = "; ".join(reasons)
-        resp = study.responses
-        if "bending" in resp or "tension_for_angle" in resp:
-            res = _bending(p, resp.get("bending", {}))
-            rec["curves"] = {"r": res.r_command.tolist(), "bending_angle_deg": res.bending_angle_deg.tolist(),
-                             "tension_N": res.tension_N.tolist()}
-            if "bending" in resp:
-                met["bending_angle_max_deg"] = float(res.bending_angle_deg.max())
-                met["bending_angle_at_half_r_deg"] = float(np.interp(0.5 * res.r_command[-1], res.r_command,
-                                                                     res.bending_angle_deg))
-                met["tension_at_r_max_N"] = float(res.tension_N[-1])
-            if "tension_for_angle" in resp:
-                goal = float(resp["tension_for_angle"].get("angle_deg", 90.0))
-                ang = np.maximum.accumulate(res.bending_angle_deg)
-                met["tension_for_angle_N"] = (float(np.interp(goal, ang, res.tension_N))
-                                              if ang[-1] >= goal else None)
-        if "blocked_force" in resp:
-            met["blocked_tip_force_N"] = blocked_tip_force(p, float(resp["blocked_force"].get("r", 0.15)))
-        if "grasp" in resp:
-            from gripper.experiments.trial import run_trial
-            g = resp["grasp"]
-            for spec in g.get("objects", ["block"]):
-                recs = [run_trial(spec, study.seed, i, params=p) for i in range(int(g.get("trials", 5)))]
-                o = recs[0].object
-                ok = [r for r in recs if r["status"] == "ok"]
-                met[f"grasp_{o}_success_rate"] = (sum(bool(r["success"]) for r in ok) / len(ok)) if ok else None
-                met[f"grasp_{o}_median_peak_force_N"] = float(np.median([r["peak_total_force_N"] for r in recs]))
+        rec["metrics"], rec["curves"] = measure_responses(p, study.responses, study.seed)
     except Exception as e:  # a failing point is recorded and the study goes on
         rec.update(status="error", error=f"{type(e).__name__}: {e}")
     rec["wall_time_s"] = time.perf_counter() - t0
@@ -544,58 +466,12 @@ def _series(records: list[dict], study: Study, key: str) -> list[tuple[float, di
 
 
 def write_plots(records: list[dict], study: Study, out: Path) -> list[Path]:
-    """One PNG per varied parameter: each scalar response against the parameter, plus the
-    bending curves of its points (paper 001 Figs. 12-16 style)."""
-    import matplotlib
+    """One PNG per varied parameter (:func:`gripper.render.study_plots.parameter_plots`)."""
+    from gripper.render.study_plots import parameter_plots
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from gripper.core.atomic import write_atomic
-
-    names = metric_names(study.responses)
-    files = []
-    for key in study.vary:
-        series = _series(records, study, key)
-        if not series:
-            continue
-        has_curve = any(r["curves"] for _, r in series)
-        n = len(names) + int(has_curve)
-        ncol = min(n, 4)
-        nrow = -(-n // ncol)
-        fig, axes = plt.subplots(nrow, ncol, figsize=(3.6 * ncol, 3.2 * nrow), squeeze=False)
-        flat = list(axes.ravel())
-        for ax in flat[n:]:
-            ax.axis("off")
-        xs = [v for v, _ in series]
-        for ax, name in zip(flat, names, strict=False):
-            ys = [r["metrics"].get(name) for _, r in series]
-            ys = [np.nan if y is None else y for y in ys]
-            ax.plot(xs, ys, "o-" if study.design == "one_at_a_time" else "o")
-            ax.set_xlabel(key)
-            ax.set_title(name, fontsize=9)
-            ax.grid(alpha=0.3)
-        if has_curve:
-            ax = flat[n - 1]
-            for v, r in series:
-                if r["curves"]:
-                    ax.plot(r["curves"]["r"], r["curves"]["bending_angle_deg"], label=f"{v:g}")
-            ax.set_xlabel("cable shortening rate r [-]")
-            ax.set_ylabel("bending angle [deg]")
-            if len(series) <= 12:
-                ax.legend(title=key, fontsize=7, title_fontsize=7)
-            ax.grid(alpha=0.3)
-        fig.suptitle(f"{study.name}: {key}")
-        fig.tight_layout()
-        path = out / f"plot_{key.replace('.', '_')}.png"
-        write_atomic(path, partial(_save_png, fig))
-        plt.close(fig)
-        files.append(path)
-    return files
-
-
-def _save_png(fig: Any, tmp: Path) -> None:
-    fig.savefig(tmp, dpi=90, format="png")
+    series = {key: _series(records, study, key) for key in study.vary}
+    return parameter_plots(series, metric_names(study.responses), out, title=study.name,
+                           connect=study.design == "one_at_a_time")
 
 
 def recommendations(records: list[dict], study: Study) -> str:

@@ -7,7 +7,7 @@ the rollout's final state and last sensor row, so a single environment and one s
 environment produce bitwise the same episode for the same seed.
 
 Example:
-    >>> from gripper.envs.core import EnvConfig
+    >>> from gripper.envs.task import EnvConfig
     >>> EnvConfig(objects=("block",), action_mode="synergy").validate().action_size
     2
 """
@@ -21,13 +21,14 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
-from gripper.core.fields import Validated
+from gripper.core.fields import Validated, param
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
-from gripper.experiments.protocol import TrialNoise
+from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
 from gripper.experiments.trial import sample_placement
 from gripper.model.names import finger_name
 from gripper.objects.library import GraspObject, Placement, get_object
+from gripper.sim.damage import running_damage_measure
 from gripper.sim.probes import STRAIN_DAMAGE_KINDS, ObjectProbe
 from gripper.sim.scene import build_grasp_scene
 from gripper.sim.sensing import ServoSensing, ServoSensor
@@ -69,69 +70,60 @@ DEFAULT_REWARD_WEIGHTS = {
 }
 
 
+# The benchmark's held grasp (lifted, not slipping): the environment's success uses the same rule
+# and numbers (gripper.experiments.protocol.is_held).
+HELD = GraspProtocol()
+
+
 @dataclass(frozen=True)
 class EnvConfig(Validated):
-    """Everything that defines the environment, validated once (SI units).
-
-    See :class:`gripper.envs.grasp_env.SoftGripperGraspEnv` for the meaning of each field.
+    """Everything that defines the environment, validated once (SI units). Each scalar argument
+    is declared here once with :func:`gripper.core.fields.param`; the environment's keyword
+    arguments, its pickling and the docs' argument table (``docs/environment.md``) follow from
+    these fields.
     """
 
+    SECTION = "env"
+
     objects: tuple[str, ...] = ("block", "cylinder")
-    pose_noise: float = 0.010
-    yaw_noise: bool = True
-    mass_noise: float = 0.0
-    friction_noise: float = 0.0
-    action_mode: str = "fingers"
-    xy_actions: bool = False
-    palm_control: str = "velocity"
-    palm_speed: float = PALM_SPEED
-    servo_control: str = "velocity"
-    frame_skip: int = 10
-    reward_type: str = "dense"
+    pose_noise: float = param(0.010, "m", ge=0, le=0.02,
+                              source="x/y offset range ±, the benchmark's placement noise")
+    yaw_noise: bool = param(True, "-", source="random yaw for objects that are not symmetric")
+    mass_noise: float = param(0.0, "-", ge=0, le=0.9, source="± fraction on the object's mass")
+    friction_noise: float = param(0.0, "-", ge=0, le=0.9, source="± fraction on the object's friction")
+    action_mode: str = param("fingers", "-", choices=("fingers", "synergy"),
+                             source="one closing action per finger, or one for all")
+    xy_actions: bool = param(False, "-", source="add palm x/y actions (needs params.lift.xy_enabled)")
+    palm_control: str = param("velocity", "-", choices=("velocity", "position"),
+                              source="palm actions as velocities (integrated) or set-points")
+    palm_speed: float = param(PALM_SPEED, "m/s", gt=0, le=1.0,
+                              source="palm speed at a velocity action of ±1: the scripted grasp's")
+    servo_control: str = param("velocity", "-", choices=("velocity", "position"),
+                               source="servo actions as velocities (integrated) or set-points")
+    frame_skip: int = param(10, "-", ge=1, le=500, integer=True,
+                            source="physics steps (2 ms) per control step: a 20 ms control period")
+    reward_type: str = param("dense", "-", choices=("dense", "sparse"), source="see Rewards")
     reward_weights: dict = field(default_factory=lambda: dict(DEFAULT_REWARD_WEIGHTS))
-    terminate_on_success: bool = False
-    success_hold_s: float = 1.0
-    success_height: float = 0.08
-    max_slip: float = 0.020
+    terminate_on_success: bool = param(False, "-", source="end the episode once the grasp is held")
+    success_hold_s: float = param(1.0, "s", gt=0, le=60,
+                                  source="held this long counts as success (the benchmark holds 2 s)")
     params: GripperParams = field(default_factory=GripperParams)
 
-    def validate(self) -> EnvConfig:
+    def check(self) -> None:
         if isinstance(self.objects, str) or not self.objects:
-            raise ValueError(f"objects: expected a non-empty list of object names, got {self.objects!r}")
+            raise ValueError(f"env.objects: expected a non-empty list of object names, got {self.objects!r}")
         for name in self.objects:
             get_object(name)  # raises with the allowed names
-        for name, v, hi in (("pose_noise", self.pose_noise, 0.02), ("mass_noise", self.mass_noise, 0.9),
-                            ("friction_noise", self.friction_noise, 0.9)):
-            if not (isinstance(v, int | float) and math.isfinite(v) and 0 <= v <= hi):
-                raise ValueError(f"{name}: must be in [0, {hi}], got {v!r}")
-        if self.action_mode not in ("fingers", "synergy"):
-            raise ValueError(f"action_mode: must be 'fingers' or 'synergy', got {self.action_mode!r}")
-        if self.palm_control not in ("velocity", "position"):
-            raise ValueError(f"palm_control: must be 'velocity' or 'position', got {self.palm_control!r}")
-        if self.servo_control not in ("velocity", "position"):
-            raise ValueError(f"servo_control: must be 'velocity' or 'position', got {self.servo_control!r}")
-        if not (isinstance(self.palm_speed, int | float) and math.isfinite(self.palm_speed)
-                and 0 < self.palm_speed <= 1.0):
-            raise ValueError(f"palm_speed: must be in (0, 1] m/s, got {self.palm_speed!r}")
-        if self.reward_type not in ("dense", "sparse"):
-            raise ValueError(f"reward_type: must be 'dense' or 'sparse', got {self.reward_type!r}")
-        if not isinstance(self.frame_skip, int) or not 1 <= self.frame_skip <= 500:
-            raise ValueError(f"frame_skip: must be an integer in [1, 500], got {self.frame_skip!r}")
         unknown = set(self.reward_weights) - set(DEFAULT_REWARD_WEIGHTS)
         if unknown:
-            raise ValueError(f"reward_weights: unknown terms {sorted(unknown)}; allowed: "
+            raise ValueError(f"env.reward_weights: unknown terms {sorted(unknown)}; allowed: "
                              f"{', '.join(DEFAULT_REWARD_WEIGHTS)}")
         for k, v in self.reward_weights.items():
-            if not (isinstance(v, int | float) and math.isfinite(v)):
-                raise ValueError(f"reward_weights.{k}: must be a finite number, got {v!r}")
-        for name in ("success_hold_s", "success_height", "max_slip"):
-            v = getattr(self, name)
-            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
-                raise ValueError(f"{name}: must be a finite number > 0, got {v!r}")
+            if isinstance(v, bool) or not (isinstance(v, int | float) and math.isfinite(v)):
+                raise ValueError(f"env.reward_weights.{k}: must be a finite number, got {v!r}")
         if self.xy_actions and not self.params.lift.xy_enabled:
-            raise ValueError("xy_actions: needs params.lift.xy_enabled = true")
+            raise ValueError("env.xy_actions: needs params.lift.xy_enabled = true")
         self.params.validate()
-        return self
 
     @property
     def n_fingers(self) -> int:
@@ -400,20 +392,15 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     # damage: the object's own criterion where it can be read at every step
     if s.obj.kind in STRAIN_DAMAGE_KINDS:
         ep.peak_strain = max(ep.peak_strain, s.probe.edge_strain(d))
-        measure = ep.peak_strain
-    elif s.obj.kind == "paper_box":
-        # a permanent dent needs a spring-back simulation (see trial.permanent_dent); per step the
-        # environment counts any plastic bending of the card (a crease) as damage: stricter
-        a = s.model.flex_plasticadr[s.probe.flex]
-        measure = float(np.abs(d.plastic[a:]).max()) if d.plastic.size else 0.0
-        measure = s.obj.damage_limit * 2.0 if measure > 0.0 else 0.0
-    else:
-        measure = float(finger.sum())  # the benchmark's peak total contact force
+    measure = running_damage_measure(s.model, d, s.obj, s.probe, peak_strain=ep.peak_strain,
+                                     total_force=float(finger.sum()))
     newly_damaged = (not ep.damaged) and s.obj.is_damaged(measure)
     ep.damaged = ep.damaged or newly_damaged
-    # held: lifted past the success height and not slipping relative to the palm
-    if height >= cfg.success_height and not ep.damaged:
-        if ep.hold_ref is None or math.dist(rel, ep.hold_ref) >= cfg.max_slip:
+    # held (the benchmark's rule): lifted past the success height and not slipping relative to
+    # the palm since the hold began; a slip restarts the hold from here
+    if height >= HELD.success_height and not ep.damaged:
+        slip = math.dist(rel, ep.hold_ref) if ep.hold_ref is not None else 0.0
+        if ep.hold_ref is None or not is_held(height, slip, HELD):
             ep.hold_ref, ep.hold_steps = rel.copy(), 0
         ep.hold_steps += 1
     else:
@@ -424,7 +411,7 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     terms = {
         "reward_reach": w["reach"] * (1.0 - math.tanh(reach / REACH_SCALE)),
         "reward_contact": w["contact"] * touching,
-        "reward_lift": w["lift"] * min(1.0, max(0.0, height / cfg.success_height)),
+        "reward_lift": w["lift"] * min(1.0, max(0.0, height / HELD.success_height)),
         "reward_success": w["success"] * float(is_success),
         "reward_damage": -w["damage"] * float(newly_damaged),
         "reward_action": -w["action"] * float(action @ action),

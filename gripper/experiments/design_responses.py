@@ -1,0 +1,102 @@
+"""The responses a design study measures on one design (paper 001's outputs, on this finger):
+the bending curve and its figures, the cable tension for a bending angle, the blocked tip force
+and grasp success. Pure functions of the parameters: the study layer
+(:mod:`gripper.studies.study`) decides which designs to run.
+
+Example:
+    >>> from gripper.core.params import GripperParams
+    >>> from gripper.experiments.design_responses import measure_responses
+    >>> metrics, curves = measure_responses(GripperParams(), {"blocked_force": {"r": 0.1}})  # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from gripper.core.params import GripperParams
+from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
+
+# Samples of the bending curve kept per point (r from 0 to r_max).
+BEND_CURVE_POINTS = 21
+# Blocked-force test: ramp the servo to the commanded shortening over this time, then hold [s];
+# both well past the finger's slowest mode (≈ 0.05 s) so the force is static.
+BLOCKED_RAMP_S = 0.5
+BLOCKED_HOLD_S = 0.5
+
+
+def _bending(p: GripperParams, opts: dict):
+    from gripper.experiments.bending import BendingConfig, run_bending_test
+
+    cfg = BendingConfig(r_max=float(opts.get("r_max", 0.45)), duration=float(opts.get("duration", 2.0)),
+                        n_points=BEND_CURVE_POINTS)
+    return run_bending_test(cfg, p)
+
+
+def blocked_tip_force(p: GripperParams, r: float) -> float:
+    """Tip force [N] of one finger whose tip is held at its straight position (a ball joint to
+    the world) while the servo reels in ``r`` × finger length of cable (quasi-static)."""
+    import mujoco
+
+    from gripper.model.builders import build_bending_spec
+    from gripper.model.names import FingerNames
+    from gripper.sim.stability import check_stable
+
+    spec = build_bending_spec(p, timestep=PAPER_BENDING_TIMESTEP)
+    names = FingerNames("f0", p.finger.n_segments)
+    m0 = spec.compile()
+    d0 = mujoco.MjData(m0)
+    mujoco.mj_forward(m0, d0)
+    tip_body = m0.body(names.bodies[-1]).id
+    anchor = d0.xmat[tip_body].reshape(3, 3).T @ (d0.site_xpos[m0.site(names.tip).id] - d0.xpos[tip_body])
+    spec.add_equality(type=mujoco.mjtEq.mjEQ_CONNECT, objtype=mujoco.mjtObj.mjOBJ_BODY,
+                      name1=names.bodies[-1], name2="world", data=list(anchor) + [0.0] * 9)
+    m = spec.compile()
+    d = mujoco.MjData(m)
+    servo = m.actuator(names.servo).id
+    target = r * p.finger.length * m.actuator_gear[servo, 0]
+    if target > m.actuator_ctrlrange[servo, 1]:
+        raise ValueError(f"blocked_force.r: {r} needs more than the servo's travel with this spool")
+    n_ramp, n_hold = int(BLOCKED_RAMP_S / m.opt.timestep), int(BLOCKED_HOLD_S / m.opt.timestep)
+    for k in range(n_ramp + n_hold):
+        d.ctrl[servo] = target * min(1.0, (k + 1) / n_ramp)
+        mujoco.mj_step(m, d)
+    check_stable(m, d, "blocked-force test")
+    mujoco.mj_forward(m, d)
+    rows = d.efc_type[:d.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY
+    return float(np.linalg.norm(d.efc_force[:d.nefc][rows]))
+
+
+def measure_responses(p: GripperParams, responses: dict, seed: int = 0) -> tuple[dict[str, float | None], dict]:
+    """(metrics, curves) of design ``p`` for the study file's ``[responses]`` table; grasp
+    trials use ``seed``. Raises whatever a response raises (the study records it)."""
+    met: dict[str, float | None] = {}
+    curves: dict[str, Any] = {}
+    resp = responses
+    if "bending" in resp or "tension_for_angle" in resp:
+        res = _bending(p, resp.get("bending", {}))
+        curves = {"r": res.r_command.tolist(), "bending_angle_deg": res.bending_angle_deg.tolist(),
+                  "tension_N": res.tension_N.tolist()}
+        if "bending" in resp:
+            met["bending_angle_max_deg"] = float(res.bending_angle_deg.max())
+            met["bending_angle_at_half_r_deg"] = float(np.interp(0.5 * res.r_command[-1], res.r_command,
+                                                                 res.bending_angle_deg))
+            met["tension_at_r_max_N"] = float(res.tension_N[-1])
+        if "tension_for_angle" in resp:
+            goal = float(resp["tension_for_angle"].get("angle_deg", 90.0))
+            ang = np.maximum.accumulate(res.bending_angle_deg)
+            met["tension_for_angle_N"] = (float(np.interp(goal, ang, res.tension_N))
+                                          if ang[-1] >= goal else None)
+    if "blocked_force" in resp:
+        met["blocked_tip_force_N"] = blocked_tip_force(p, float(resp["blocked_force"].get("r", 0.15)))
+    if "grasp" in resp:
+        from gripper.experiments.trial import run_trial
+        g = resp["grasp"]
+        for spec in g.get("objects", ["block"]):
+            recs = [run_trial(spec, seed, i, params=p) for i in range(int(g.get("trials", 5)))]
+            o = recs[0].object
+            ok = [r for r in recs if r["status"] == "ok"]
+            met[f"grasp_{o}_success_rate"] = (sum(bool(r["success"]) for r in ok) / len(ok)) if ok else None
+            met[f"grasp_{o}_median_peak_force_N"] = float(np.median([r["peak_total_force_N"] for r in recs]))
+    return met, curves
