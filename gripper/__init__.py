@@ -77,7 +77,7 @@ _EXPORTS = {
     "Envelope": "gripper.studies.envelope",
     "load_envelope": "gripper.studies.envelope",
     "run_envelope": "gripper.studies.envelope",
-    "ServoSensing": "gripper.sim.sensing",
+    "ServoSensing": "gripper.servo.sensing",
     "DepthCamera": "gripper.sim.depth",
     "estimate_object": "gripper.sim.depth",
     "Calibration": "gripper.calibration.calfile",
@@ -107,7 +107,7 @@ if TYPE_CHECKING:  # static checkers and IDEs see the real names
     from gripper.objects.library import GraspObject, Placement, get_object, mesh_object
     from gripper.render.figures import bending_figure, success_plot
     from gripper.render.video import record_trial_video
-    from gripper.sim.sensing import ServoSensing
+    from gripper.servo.sensing import ServoSensing
     from gripper.studies.envelope import Envelope, load_envelope, run_envelope
     from gripper.studies.study import load_study, run_study
 

@@ -22,7 +22,7 @@ from gripper.calibration.measured import MAX_BENDING_DEG, angle_columns, read_me
 from gripper.calibration.reference import CLOSED_CUT_MARGIN_DEG, ReferenceConfig
 from gripper.core.params import GripperParams
 from gripper.core.resources import CALIBRATION_EXAMPLES_DIR
-from gripper.core.servo import servo_datasheet
+from gripper.servo.datasheet import servo_datasheet
 
 P = GripperParams()
 N_SEG = P.finger.n_segments

@@ -12,8 +12,8 @@ from gripper.experiments.controller import CONTACT_TENSION, CURRENT_LIMIT_FACTOR
 from gripper.experiments.protocol import GRIP_TENSION, GRIP_TENSION_RANGE, GraspProtocol
 from gripper.experiments.trial import run_trial
 from gripper.objects.library import Placement, get_object
+from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.scene import build_grasp_scene
-from gripper.sim.sensing import ServoSensing, ServoSensor
 
 
 @pytest.fixture(scope="module")

@@ -1,8 +1,8 @@
 import pytest
 
 from gripper.core.params import GripperParams
-from gripper.core.servo import SERVO_PRESETS
-from gripper.experiments.servo_check import measure_servo
+from gripper.servo.datasheet import SERVO_PRESETS
+from gripper.servo.datasheet_check import measure_servo
 
 
 @pytest.mark.parametrize("preset", sorted(SERVO_PRESETS))

@@ -61,7 +61,7 @@ def _protocol_table() -> str:
 
 
 def _sensing_table() -> str:
-    from gripper.sim.sensing import ServoSensing
+    from gripper.servo.sensing import ServoSensing
 
     return _fields_table(((ServoSensing, "sensing"),), ".4g")
 

@@ -25,9 +25,9 @@ from typing import Any, Self
 from gripper.core.atomic import write_text_atomic
 from gripper.core.fields import FieldSpec, Validated, check_fields, field_specs, param
 from gripper.core.resources import DEFAULT_CALIBRATION_DIR
-from gripper.core.servo import SERVO_PRESETS, ServoDatasheet, servo_datasheet
 from gripper.core.units import DEG
 from gripper.core.user_files import read_user_data
+from gripper.servo.datasheet import SERVO_PRESETS, ServoDatasheet, servo_datasheet
 
 # paper 000, Table 2: torsion spring stiffness 1.9e-3 N·m/deg = 0.1089 N·m/rad, as printed. The
 # unit is suspect (see docs/consistency.md): read per radian it is 1.9e-3 N·m/rad.
@@ -301,7 +301,7 @@ class ServoParams(Validated):
     """The servo that reels each cable in: a datasheet preset, a spool and controller tuning.
 
     Attributes:
-        preset: key of :data:`gripper.core.servo.SERVO_PRESETS`.
+        preset: key of :data:`gripper.servo.datasheet.SERVO_PRESETS`.
         spool_radius: radius the cable winds on.
         saturation_error_deg: position error at which the PD asks for the stall torque.
         damping_ratio: damping ratio of the position loop on the rotor inertia.
@@ -311,7 +311,7 @@ class ServoParams(Validated):
 
     SECTION = "servo"
 
-    preset: str = param("hobby_6v", "-", choices=tuple(SERVO_PRESETS), source="gripper.core.servo datasheets")
+    preset: str = param("hobby_6v", "-", choices=tuple(SERVO_PRESETS), source="the datasheets in gripper.servo.datasheet")
     spool_radius: float = param(0.020, "m", gt=0,
                                 source="assumed: 180° of travel reels in 63 mm, enough to close every cut")
     saturation_error_deg: float = param(0.6, "deg", gt=0, lt=90,

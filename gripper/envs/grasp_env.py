@@ -167,7 +167,7 @@ class SoftGripperGraspEnv(gym.Env):
     | sensed_servo_current | 99-102 | 4 | A |
     | sensed_spool_tension | 103-106 | 4 | N |
 
-    The ``sensed_*`` entries are what the servos report (:mod:`gripper.sim.sensing`: present
+    The ``sensed_*`` entries are what the servos report (:mod:`gripper.servo.sensing`: present
     position in encoder counts, present current in 2.69 mA units, a spool load cell, each with
     its noise, drawn from the episode's seed).
 

@@ -28,10 +28,10 @@ from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
 from gripper.experiments.trial import sample_placement
 from gripper.model.names import finger_name
 from gripper.objects.library import GraspObject, Placement, get_object
+from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.damage import running_damage_measure
 from gripper.sim.probes import STRAIN_DAMAGE_KINDS, ObjectProbe
 from gripper.sim.scene import build_grasp_scene
-from gripper.sim.sensing import ServoSensing, ServoSensor
 from gripper.sim.stepping import STATE_SPEC
 
 CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
@@ -154,7 +154,7 @@ def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
              ("object_pos_rel_palm", 3, "m"), ("object_quat", 4, "-"),
              ("pad_force", nf * cfg.params.finger.n_segments, "N"),
              ("finger_object_force", nf, "N"),
-             # what the servos report (gripper.sim.sensing: quantised, noisy)
+             # what the servos report (gripper.servo.sensing: quantised, noisy)
              ("sensed_servo_position", nf, "rad"), ("sensed_servo_current", nf, "A"),
              ("sensed_spool_tension", nf, "N")]
     out, i = {}, 0

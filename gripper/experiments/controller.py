@@ -36,7 +36,7 @@ import mujoco
 import numpy as np
 
 from gripper.core.units import DEG
-from gripper.sim.sensing import ServoReading, ServoSensor
+from gripper.servo.sensing import ServoReading, ServoSensor
 
 # Contact threshold on the spool tension [N]. Free closing of the calibrated default fingers
 # needs at most 0.42 N of cable tension up to 2.0 rad of spool (measured at the 2 rad/s close

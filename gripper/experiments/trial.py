@@ -39,11 +39,11 @@ from gripper.objects.library import (
     Placement,
     get_object,
 )
+from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.damage import damage_measure
 from gripper.sim.depth import DepthCamera, NoObjectSeen, estimate_object, palm_depth_points
 from gripper.sim.probes import ObjectProbe, PeakRecorder
 from gripper.sim.scene import build_grasp_scene
-from gripper.sim.sensing import ServoSensing, ServoSensor
 from gripper.sim.stability import SimulationUnstable
 from gripper.sim.stepping import ChunkStepper, run_phase
 

@@ -41,6 +41,7 @@ from gripper.model.geometry import (
 )
 from gripper.model.names import MODEL_NAME, FingerNames, finger_name
 from gripper.objects.library import get_object
+from gripper.servo.actuator import add_servo, set_dcmotor
 
 SILICONE_RGBA = (0.93, 0.93, 0.88, 1.0)
 
@@ -109,9 +110,9 @@ def add_defaults(spec: mujoco.MjSpec, p: GripperParams) -> dict[str, mujoco.MjsD
     pad.site.type = mujoco.mjtGeom.mjGEOM_BOX
     pad.site.group = 4
     pad.site.rgba = [0.1, 0.8, 0.1, 0.3]
-    # The servo: every finger's dcmotor shares its datasheet and position loop (add_servo)
+    # The servo: every finger's dcmotor shares its datasheet and position loop (gripper.servo.actuator)
     servo = spec.add_default("servo", root)
-    _set_dcmotor(servo.actuator, p)
+    set_dcmotor(servo.actuator, p)
     add_materials(spec)
     return {"root": root, "visual": visual, "collision": collision, "hinge": hinge, "pad": pad, "servo": servo}
 
@@ -208,39 +209,6 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
 def straight_cable_length(p: GripperParams) -> float:
     """Tendon length with the finger straight and the reel at zero [m] (collinear path)."""
     return REEL_DEPTH + p.finger.length
-
-
-def _set_dcmotor(act, p: GripperParams) -> None:
-    """The servo as a MuJoCo ``dcmotor`` (on an actuator or the ``servo`` default class).
-
-    Gear 1/spool radius makes the actuator length the spool angle [rad] and its force the output
-    torque [N·m] (cable tension = torque / spool radius). ``nominal`` = (supply voltage, stall
-    torque, no-load speed) from the datasheet; input ``pos`` with the on-board PD in torque
-    space, the drive voltage clamped to the supply (``Vmax``) and the set-point slewed at the
-    contraction speed (``slewmax``); the reflected rotor inertia is the actuator armature.
-    """
-    ds = p.servo.datasheet
-    kp, kd = ds.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
-                         damping_ratio=p.servo.damping_ratio)
-    act.set_to_dcmotor(motorconst=[0, 0], resistance=0,
-                       nominal=[ds.voltage, ds.stall_torque, ds.no_load_speed],
-                       controller=[kp, 0.0, kd, p.servo.slew_rate, 0.0, ds.voltage],
-                       ctrlspec=int(mujoco.mjtCtrlInput.mjINPUT_POS))
-    act.gear = [1.0 / p.servo.spool_radius, 0, 0, 0, 0, 0]
-    act.armature = ds.rotor_inertia
-    act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
-    act.ctrlrange = [0.0, ds.travel]
-
-
-def add_servo(spec: mujoco.MjSpec, p: GripperParams, name: str, reel_joint: str,
-              servo_class: mujoco.MjsDefault | None = None) -> None:
-    """The servo on the reel's slide joint: of class ``servo`` (:func:`add_defaults`) if given,
-    else with its dcmotor set here (:func:`_set_dcmotor`)."""
-    if servo_class is not None:
-        spec.add_actuator(servo_class, name=name, target=reel_joint, trntype=mujoco.mjtTrn.mjTRN_JOINT)
-        return
-    act = spec.add_actuator(name=name, target=reel_joint, trntype=mujoco.mjtTrn.mjTRN_JOINT)
-    _set_dcmotor(act, p)
 
 
 def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames,

@@ -15,7 +15,7 @@ Every reading is rounded to its resolution after Gaussian noise is added. The no
 from the trial's own generator, so a trial's readings are the same whichever process runs it.
 
 Example:
-    >>> from gripper.sim.sensing import ServoSensing
+    >>> from gripper.servo.sensing import ServoSensing
     >>> round(ServoSensing().position_resolution, 6)
     0.001534
 """
