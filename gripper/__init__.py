@@ -56,8 +56,8 @@ _EXPORTS = {
     "build_gripper_spec": "gripper.model.builders",
     "build_scene_spec": "gripper.model.builders",
     "build_bending_spec": "gripper.model.builders",
-    "GraspObject": "gripper.objects.library",
-    "Placement": "gripper.objects.library",
+    "GraspObject": "gripper.objects.grasp_object",
+    "Placement": "gripper.objects.scene_objects",
     "get_object": "gripper.objects.library",
     "mesh_object": "gripper.objects.library",
     "GraspProtocol": "gripper.experiments.protocol",
@@ -104,7 +104,9 @@ if TYPE_CHECKING:  # static checkers and IDEs see the real names
     from gripper.experiments.pullout import run_pullout
     from gripper.experiments.trial import run_trial
     from gripper.model.builders import build_bending_spec, build_gripper_spec, build_scene_spec
-    from gripper.objects.library import GraspObject, Placement, get_object, mesh_object
+    from gripper.objects.grasp_object import GraspObject
+    from gripper.objects.library import get_object, mesh_object
+    from gripper.objects.scene_objects import Placement
     from gripper.render.figures import bending_figure, success_plot
     from gripper.render.video import record_trial_video
     from gripper.servo.sensing import ServoSensing

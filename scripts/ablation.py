@@ -25,7 +25,8 @@ import time
 
 from gripper.experiments.protocol import GraspProtocol
 from gripper.experiments.trial import run_trial
-from gripper.objects.library import GraspObject, get_object
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.library import get_object
 from gripper.studies.envelope import ENVELOPE_HEIGHT, SHAPES
 
 VARIANTS = {

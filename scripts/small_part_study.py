@@ -20,7 +20,7 @@ from gripper.core.params import GripperParams
 from gripper.experiments.approach import finger_reach
 from gripper.experiments.protocol import GraspProtocol
 from gripper.experiments.trial import run_trial
-from gripper.objects.library import GraspObject
+from gripper.objects.grasp_object import GraspObject
 from gripper.studies.envelope import ENVELOPE_HEIGHT, SHAPES
 
 

@@ -11,7 +11,9 @@ from gripper.core.params import GripperParams
 from gripper.experiments.approach import choose_grasp, finger_reach
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.trial import run_trial
-from gripper.objects.library import GraspObject, Placement, get_object
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.library import get_object
+from gripper.objects.scene_objects import Placement
 from gripper.sim.depth import ObjectEstimate
 
 P = GripperParams()

@@ -179,7 +179,8 @@ def test_closed_cuts_keep_their_design_under_the_trials_integrator(degrees, tol)
     import mujoco
 
     from gripper.model.closure import closed_cut_rest_overrun
-    from gripper.objects.library import Placement, get_object
+    from gripper.objects.library import get_object
+    from gripper.objects.scene_objects import Placement
     from gripper.sim.scene import build_grasp_scene
 
     p = GripperParams()

@@ -10,12 +10,14 @@ import pytest
 import gripper.sim.canonical as canonical
 from gripper.core.params import GripperParams
 from gripper.experiments.trial import run_trial
-from gripper.objects.library import Placement, get_object
+from gripper.objects.library import get_object
+from gripper.objects.scene_objects import Placement
 from gripper.sim.scene import build_grasp_scene
 
 CHILD = """
 import sys, numpy as np
-from gripper.objects.library import Placement, get_object
+from gripper.objects.scene_objects import Placement
+from gripper.objects.library import get_object
 from gripper.core.params import GripperParams
 from gripper.experiments.trial import build_grasp_scene
 m = build_grasp_scene(GripperParams(), get_object("balloon"), Placement(x=0.004, y=-0.003))

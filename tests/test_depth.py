@@ -10,7 +10,9 @@ import numpy as np
 import pytest
 
 from gripper.core.params import GripperParams
-from gripper.objects.library import GraspObject, Placement, get_object
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.library import get_object
+from gripper.objects.scene_objects import Placement
 from gripper.sim.depth import DepthCamera, NoObjectSeen, estimate_object, palm_depth_points
 from gripper.sim.scene import build_grasp_scene
 

@@ -101,7 +101,8 @@ def test_the_closed_cuts_match_is_reused_bitwise():
     """The second scene of a design takes the first one's tuned limits: the same model."""
     import numpy as np
 
-    from gripper.objects.library import Placement, get_object
+    from gripper.objects.library import get_object
+    from gripper.objects.scene_objects import Placement
     from gripper.sim import scene
 
     p = GripperParams().replace(sim=GripperParams().sim.replace(timestep=0.002))

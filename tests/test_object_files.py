@@ -15,7 +15,8 @@ from gripper.core.resources import OBJECTS_DIR
 from gripper.experiments.protocol import GraspProtocol
 from gripper.experiments.trial import run_trial
 from gripper.objects.files import load_object_file
-from gripper.objects.library import APERTURE_RADIUS, get_object, mesh_object
+from gripper.objects.grasp_object import APERTURE_RADIUS
+from gripper.objects.library import get_object, mesh_object
 
 SHORT = GraspProtocol(hold_s=0.2, shake_s=0.2)
 

@@ -7,7 +7,8 @@ import trimesh
 
 from gripper.bench.benchmark import wilson_interval
 from gripper.core.params import GripperParams
-from gripper.objects.library import DEFAULT_OBJECTS, LIBRARY, Placement, get_object, mesh_object
+from gripper.objects.library import DEFAULT_OBJECTS, LIBRARY, get_object, mesh_object
+from gripper.objects.scene_objects import Placement
 
 
 def test_library_fits_the_aperture_with_placement_noise():
@@ -64,7 +65,7 @@ def test_wilson_interval_known_values():
 
 
 def test_paper_box_shell_is_closed_and_compiles():
-    from gripper.objects.library import box_shell
+    from gripper.objects.scene_objects import box_shell
     from gripper.sim.scene import build_grasp_scene
     obj = get_object("paper_box")
     mesh = box_shell(obj.size, obj.mesh_points)

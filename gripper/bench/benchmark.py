@@ -47,7 +47,8 @@ from gripper.core.provenance import versions
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
 from gripper.experiments.trial import run_trial
-from gripper.objects.library import DEFAULT_OBJECTS, GraspObject, get_object
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.library import DEFAULT_OBJECTS, get_object
 
 
 def wilson_interval(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:

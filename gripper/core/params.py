@@ -311,7 +311,8 @@ class ServoParams(Validated):
 
     SECTION = "servo"
 
-    preset: str = param("hobby_6v", "-", choices=tuple(SERVO_PRESETS), source="the datasheets in gripper.servo.datasheet")
+    preset: str = param("hobby_6v", "-", choices=tuple(SERVO_PRESETS),
+                        source="the datasheets in gripper.servo.datasheet")
     spool_radius: float = param(0.020, "m", gt=0,
                                 source="assumed: 180° of travel reels in 63 mm, enough to close every cut")
     saturation_error_deg: float = param(0.6, "deg", gt=0, lt=90,

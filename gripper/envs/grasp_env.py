@@ -406,7 +406,7 @@ def restore_episode(scenes: SceneSet, st: dict) -> EpisodeState:
     import mujoco
 
     from gripper.envs.task import Scene, load_state
-    from gripper.objects.library import Placement
+    from gripper.objects.scene_objects import Placement
     obj = next(o for o in scenes.objects if o.name == st["object"])  # any spec form: by its name
     place = Placement(**st["placement"])
     scene = Scene(scenes.cfg, obj, place) if obj.is_flex else scenes._rigid[obj.name]

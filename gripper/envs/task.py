@@ -27,7 +27,9 @@ from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
 from gripper.experiments.trial import sample_placement
 from gripper.model.names import finger_name
-from gripper.objects.library import GraspObject, Placement, get_object
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.library import get_object
+from gripper.objects.scene_objects import Placement
 from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.damage import running_damage_measure
 from gripper.sim.probes import STRAIN_DAMAGE_KINDS, ObjectProbe

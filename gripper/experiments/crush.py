@@ -30,7 +30,9 @@ from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.experiments.protocol import CRUSH_HOLD_S, CRUSH_SPEED
 from gripper.model.builders import build_scene_spec
-from gripper.objects.library import GraspObject, Placement, add_object, get_object
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.library import get_object
+from gripper.objects.scene_objects import Placement, add_object
 from gripper.sim.canonical import apply_canonical_constants
 from gripper.sim.damage import damage_measure
 from gripper.sim.probes import ObjectProbe, geom_normal_force

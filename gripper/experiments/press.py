@@ -21,7 +21,8 @@ import mujoco
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.model.builders import build_scene_spec
-from gripper.objects.library import Placement, add_object, get_object
+from gripper.objects.library import get_object
+from gripper.objects.scene_objects import Placement, add_object
 from gripper.sim.damage import permanent_dent
 from gripper.sim.probes import ObjectProbe, geom_normal_force
 

@@ -10,11 +10,9 @@ import numpy as np
 from gripper.core.params import GripperParams
 from gripper.experiments.protocol import PULL_MAX, PULL_RATE, PULL_SLIP, GraspProtocol
 from gripper.experiments.trial import run_protocol
-from gripper.objects.library import (
-    GraspObject,
-    Placement,
-    get_object,
-)
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.library import get_object
+from gripper.objects.scene_objects import Placement
 from gripper.sim.probes import ObjectProbe, PeakRecorder
 from gripper.sim.scene import build_grasp_scene
 from gripper.sim.stability import check_stable

@@ -34,11 +34,9 @@ from gripper.experiments.approach import ApproachPlan, fingertip_palm_z, plan_ap
 from gripper.experiments.controller import GripController, check_grip_tension
 from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
 from gripper.experiments.record import TrialRecord
-from gripper.objects.library import (
-    GraspObject,
-    Placement,
-    get_object,
-)
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.library import get_object
+from gripper.objects.scene_objects import Placement
 from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.damage import damage_measure
 from gripper.sim.depth import DepthCamera, NoObjectSeen, estimate_object, palm_depth_points

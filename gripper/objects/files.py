@@ -47,16 +47,15 @@ from typing import Any
 
 from gripper.core.fields import check_safe_name
 from gripper.core.user_files import read_user_data
-from gripper.objects.library import (
+from gripper.objects.grasp_object import (
     DAMAGE_CRITERIA,
     DEFAULT_MESH_POINTS,
     KINDS,
     MESH_POINTS_RANGE,
-    RIGID_CLOSE,
     RIGID_KINDS,
     GraspObject,
-    mesh_object,
 )
+from gripper.objects.library import RIGID_CLOSE, mesh_object
 
 MATERIAL_KEYS = ("youngs_modulus", "thickness", "yield_strain")
 SECTIONS: dict[str, tuple[str, ...] | None] = {

@@ -36,7 +36,8 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from gripper.objects.library import OBJECT_BODY, GraspObject, Placement, add_object
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.scene_objects import OBJECT_BODY, Placement, add_object
 
 _CACHE: dict[str, dict[str, np.ndarray]] = {}
 

@@ -9,11 +9,8 @@ import mujoco
 import numpy as np
 
 from gripper.model.names import finger_name
-from gripper.objects.library import (
-    CONTENTS_BODY,
-    OBJECT_BODY,
-    GraspObject,
-)
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.scene_objects import CONTENTS_BODY, OBJECT_BODY
 
 # Objects whose damage measure is the peak edge strain of their flex (burst, tear).
 STRAIN_DAMAGE_KINDS = ("balloon", "bag", "zipper_bag")

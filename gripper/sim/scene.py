@@ -9,11 +9,8 @@ from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.model.builders import build_gripper_spec, build_scene_spec
 from gripper.model.closure import tune_closure_limits
-from gripper.objects.library import (
-    GraspObject,
-    Placement,
-    add_object,
-)
+from gripper.objects.grasp_object import GraspObject
+from gripper.objects.scene_objects import Placement, add_object
 from gripper.sim.canonical import apply_canonical_constants
 
 # The closed cuts' tuned limits, per design (parameter hash): matching them simulates 2,500

@@ -50,7 +50,7 @@ from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import read_user_data
 from gripper.experiments.protocol import GRIP_TENSION, GraspProtocol, TrialNoise
-from gripper.objects.library import GraspObject
+from gripper.objects.grasp_object import GraspObject
 
 SHAPES = {"sphere": "rigid_sphere", "cylinder": "rigid_cylinder", "box": "rigid_box"}
 # Height of the envelope's cylinders and boxes [m]: the library block's and cylinder's 60-70 mm
