@@ -279,7 +279,7 @@ def test_uniform_beam_end_moment_within_5_percent():
     """Issue acceptance: a uniform bar meshed the same way bends under an end moment within 5 %
     of the closed form (uniform curvature M/EI), measured on the neutral axis away from the
     clamp and the loaded face. The locking Kuhn split fails the same check."""
-    from gripper.calibration.reference import beam_end_moment_check
+    from gripper.calibration.reference_checks import beam_end_moment_check
 
     b = beam_end_moment_check(theta=1.0)
     assert b["max_speed"] < 1e-4  # at rest

@@ -78,7 +78,7 @@ def test_linear_solve_is_the_flex_at_small_load():
     """The convergence study's linear solve of the reference's discretisation agrees with
     MuJoCo's own relaxation of that mesh (coarse Kuhn mesh, for speed): at 0.01 N the flex's
     geometric nonlinearity is about 1 %."""
-    from gripper.calibration.reference import static_bend
+    from gripper.calibration.reference_checks import static_bend
 
     mesh = MeshResolution(split="kuhn6")
     lin = linear_compliance(None, mesh)["compliance_deg_per_N"]
@@ -104,7 +104,7 @@ def test_corrected_flex_has_the_extrapolated_compliance():
     2 % of the extrapolated compliance."""
     from dataclasses import replace
 
-    from gripper.calibration.reference import static_bend
+    from gripper.calibration.reference_checks import static_bend
 
     factor = COMMITTED.settings["run"]["modulus_factor"]
     f0 = COMMITTED.settings["convergence"]["extrapolated_compliance_deg_per_N"]

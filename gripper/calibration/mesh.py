@@ -32,7 +32,7 @@ Choices (written down because no paper gives them):
   node's ``node_weight`` (2 off the plane, 1 on it) counts its mirror image wherever the whole
   body is measured (centroids, best-fit rotations, load shares).
 * **Split**: linear tetrahedra lock in bending, and badly so when nearly incompressible
-  (Poisson 0.48). On the uniform-beam check (:func:`~gripper.calibration.reference.beam_end_moment_check`,
+  (Poisson 0.48). On the uniform-beam check (:func:`~gripper.calibration.reference_checks.beam_end_moment_check`,
   default counts) the six-tetrahedron Kuhn split reaches 0.53 of the closed-form curvature, the
   24-tetrahedron centre split 0.96, with 3.5x the nodes. A 12-tetrahedron split (centre node only)
   reached 0.67. So ``centre24`` is the default; ``kuhn6`` stays for quick looks.

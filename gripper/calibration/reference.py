@@ -1,54 +1,11 @@
 """Flexible-multibody reference: the silicone finger as a MuJoCo 3D flex, bent by its cable.
 
 The body (cuts, bridges, cable channel) is meshed by :func:`gripper.calibration.mesh.finger_mesh`
-from the same :class:`~gripper.core.params.FingerGeometry` as the hinge model, and simulated as a
-``flexcomp`` of linear tetrahedra (24 per mesh cell, see the mesh module on locking) with
-Saint Venant-Kirchhoff elasticity (Young's modulus,
-Poisson's ratio and density from :class:`~gripper.core.params.Material`: paper 000 Tables 1-2). The
-base element B1 is clamped over the half of its length that sits in the palm mount.
-
-**Symmetry.** By default only the half y >= 0 of the body is meshed (the finger, the cable on
-its centre line and the bending are symmetric about the plane y = 0). The nodes on that plane
-are held in it by a stiff spring on their y slide, the half carries half of every load, and
-centroids and best-fit rotations count each node's mirror image (``FingerMesh.node_weight``).
-A step of the half costs 0.7x one of the full body (24 against 34 ms, measured side by side at
-the default tolerance); the two agree within 0.2 % on the static bend (69.6° against 69.7° at
-0.15 N, measured with uniform cells through the height), the residue of the half's finer cells
-across the channel.
-
-**Cable.** As in paper 000 (cable forces at the hole points A_i), the cable acts through
-equivalent forces. Its path runs from the fixed guide behind the palm through one via point per
-element, the centroid of that element's channel wall, to the knot at the tip's distal face. At
-every step the via points are taken from the deformed mesh, each straight span's unit vector is
-recomputed, and the net cable force at each via point, ``T (u_out - u_in)``, is spread equally
-over the channel-wall nodes of its element (the knot's force over the channel rim at the tip),
-each node of the whole body taking an equal share.
-The cable shortening ``r`` is the change of the path length over the straight finger's length.
-
-**Load.** Tension is the input: a staircase of ``n_levels`` equal steps up to ``tension_max``,
-each step a 50 ms half-cosine ramp then a hold, 2 s in all at a 5e-4 s step (paper 000 §IV).
-The end of each hold is a quasi-static point; the ramps are the transient that carries damping.
-
-**Mass and damping.** Each node carries the lumped mass of its tetrahedra (a quarter of each
-one's mass), in place of flexcomp's equal split, which would make the finely graded bridges
-heavy. Paper 000 Table 2 gives a modal damping of 0.5 for the retained (lowest) modes. It is
-applied as mass-proportional damping ``alpha = 2 zeta omega_1`` on every node (MuJoCo's dof
-damping, ``alpha`` times the node's mass): the first bending mode ``f1``
-(:attr:`ReferenceConfig.first_mode_hz`), which carries the bending test, gets zeta = 0.5, and
-higher modes less. Stiffness-proportional (Rayleigh beta) damping, the alternative MuJoCo's flex
-offers, would damp the stiff volumetric modes of this nearly incompressible body with ratios in
-the thousands; that made the implicit solve ill-conditioned and the test 4x slower (measured on
-the Kuhn-split mesh: 24.7 s against 6.1 s for the first 0.2 s). The flex keeps only a small
-stiffness-proportional damping, :attr:`ReferenceConfig.mesh_mode_damping`, for the mesh-scale
-modes that mass-proportional damping leaves almost undamped.
-
-**Gravity** is off: the hinge model's bending test lies in a horizontal plane, where gravity
-loads only the hinge bearings, so the calibration compares the cable-spring balance alone.
-
-**Checks (measured, see ``scripts/bench_calibration.py``).** :func:`beam_end_moment_check`
-compares a uniform bar meshed the same way with the closed-form end-moment curvature (linear
-tetrahedra lock in bending; the default split keeps that small), and :func:`static_bend` gives
-the mesh-convergence figure.
+from the same :class:`~gripper.core.params.FingerGeometry` as the hinge model and simulated as a
+``flexcomp`` of linear tetrahedra with the silicone of paper 000 Tables 1-2, clamped at B1, loaded
+by a staircase of cable tensions (2 s at 5e-4 s, paper 000 §IV). How it is built (symmetry, the
+cable's equivalent forces, the load, mass and damping, gravity) and why: ``docs/calibration.md``,
+"How the reference is built". Its checks: :mod:`gripper.calibration.reference_checks`.
 
 Example:
     >>> from gripper.calibration.reference import ReferenceConfig, run_reference
@@ -61,7 +18,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, field
 
 import mujoco
 import numpy as np
@@ -463,143 +420,5 @@ def run_bending_record(ref: ReferenceFinger) -> BendingRecord:
 
 
 __all__ = ["BendingRecord", "ReferenceConfig", "ReferenceFinger", "SimulationUnstable",
-           "beam_end_moment_check", "static_bend", "run_bending_record",
+           "run_bending_record",
            "plateau_indices", "run_reference", "tension_schedule"]
-
-
-def _relaxation_config(mesh: MeshResolution) -> ReferenceConfig:
-    """5 ms implicit steps, first mode critically damped: comes to rest for static checks. The
-    solve keeps a 1e-6 tolerance: at 5 ms steps it is ill-conditioned (see ReferenceConfig)."""
-    return ReferenceConfig(mesh=mesh, timestep=5e-3, damping_ratio=1.0, solver_tolerance=1e-6,
-                           solver_iterations=20000)
-
-
-def beam_end_moment_check(params: GripperParams | None = None,
-                          mesh: MeshResolution | None = None, *, theta: float = 1.0,
-                          settle_time: float = 2.0, material=None) -> dict:
-    """The uniform-beam check: a bar of the finger's size, meshed the same way without cuts
-    or channel, clamped like the reference and loaded by a pure end moment.
-
-    The moment ``M = theta·EI/L_free`` (closed form: uniform curvature ``M/EI``, tip rotation
-    ``theta``) is applied as a follower couple: nodal forces on the tip face, linear in the
-    height and turned with the face at every step. Solved quasi-statically (5 ms implicit steps,
-    heavily damped, until at rest).
-
-    Measures, each against the closed form:
-
-    * ``curvature_ratio``: curvature of the neutral axis (the node line at mid-height, averaged
-      across the width) fitted over the free span less one bar height at each end, where the
-      clamp and the concentrated end load disturb the field (Saint-Venant), times ``EI/M``.
-      This is the measure the acceptance line is checked on.
-    * ``ratio``: rotation of the loaded face (best-fit line) over ``theta``; it includes the
-      local distortion under the nodal loads.
-    * ``tip_error_frac``: neutral-axis tip position error over the free length, against the
-      circular arc of radius ``EI/M``.
-
-    Args:
-        material: optional :class:`~gripper.core.params.Material` to use instead of the params'
-            (e.g. another Poisson's ratio, to separate volumetric from shear locking).
-
-    Returns:
-        dict with the three measures, ``tip_angle_rad``, ``closed_form_rad``, ``nodes``,
-        ``wall_time_s`` and ``max_speed`` (m/s, rest check).
-    """
-    p = (params or GripperParams()).validate()
-    if material is not None:
-        p = replace(p, material=material.validate())
-    res = replace(mesh or MeshResolution(), uniform=True)
-    cfg = _relaxation_config(res)
-    ref = ReferenceFinger(p, cfg)
-    m, d = ref.model, ref.data
-    g, mat = p.finger, p.material
-    pts = ref.mesh.points
-    tip = np.flatnonzero(np.isclose(pts[:, 0], g.length))
-    tip_bodies = ref.body_of_node[tip]
-    w = ref.weight[tip]
-    s = pts[tip, 2] - np.average(pts[tip, 2], weights=w)
-    L_free = g.length - cfg.clamp_length
-    EI = mat.youngs_modulus * g.width * g.height ** 3 / 12.0
-    M = theta * EI / L_free
-    f = -M * ref.load_share * w * s / np.sum(w * s ** 2)
-    t0 = time.perf_counter()
-    n = int(round(settle_time / cfg.timestep))
-    ramp = 0.5 * settle_time
-    for _ in range(n):
-        cur = d.xpos[tip_bodies]
-        ang = math.atan2(-np.polyfit(s, cur[:, 0], 1)[0], np.polyfit(s, cur[:, 2], 1)[0])
-        scale = min(1.0, d.time / ramp)
-        d.xfrc_applied[tip_bodies, 0] = scale * f * math.cos(ang)
-        d.xfrc_applied[tip_bodies, 2] = scale * f * math.sin(ang)
-        mujoco.mj_step(m, d)
-    check_stable(m, d, "beam check")
-    pos = ref.node_positions()
-    cur = pos[tip]
-    ang = math.atan2(-np.polyfit(s, cur[:, 0], 1)[0], np.polyfit(s, cur[:, 2], 1)[0])
-    # Neutral axis: the node level nearest mid-height, averaged across the width per station.
-    z_mid = 0.5 * g.height
-    levels = np.unique(np.round(pts[:, 2], 12))
-    z_axis = levels[np.argmin(np.abs(levels - z_mid))]
-    on_axis = np.flatnonzero(np.isclose(pts[:, 2], z_axis))
-    xs = np.unique(np.round(pts[on_axis, 0], 12))
-    line = np.array([ref.centroid(on_axis[np.isclose(pts[on_axis, 0], x)], pos) for x in xs])
-    phi = np.unwrap(np.arctan2(np.diff(line[:, 2]), np.diff(line[:, 0])))
-    s_mid = 0.5 * (xs[1:] + xs[:-1])
-    inner = (s_mid >= cfg.clamp_length + g.height) & (s_mid <= g.length - g.height)
-    kappa = np.polyfit(s_mid[inner], phi[inner], 1)[0]
-    # Closed-form tip of the neutral axis: a circular arc of radius EI/M from the clamp.
-    rad = EI / M
-    exact = np.array([cfg.clamp_length + rad * math.sin(theta),
-                      z_axis + rad * (1 - math.cos(theta))])
-    return {
-        "curvature_ratio": float(kappa * EI / M),
-        "tip_angle_rad": ang, "closed_form_rad": theta, "ratio": ang / theta,
-        "tip_error_frac": float(np.linalg.norm(line[-1][[0, 2]] - exact) / L_free),
-        "nodes": int(len(pts)), "wall_time_s": time.perf_counter() - t0,
-        "max_speed": float(np.abs(d.qvel).max()),
-    }
-
-
-def static_bend(params: GripperParams | None = None, mesh: MeshResolution | None = None, *,
-                tension: float = 0.15, ramp_time: float = 1.0, rest_tol_deg: float = 0.02,
-                max_time: float = 20.0, damping_ratio: float = 0.5) -> dict:
-    """The reference finger at rest under a constant cable ``tension`` [N] (mesh convergence).
-
-    Quasi-static: 5 ms implicit steps, the tension ramped over ``ramp_time`` [s], the first
-    mode damped with ``damping_ratio``; then held in 0.5 s chunks until the bending angle moves
-    less than ``rest_tol_deg`` [deg] over a chunk (at most ``max_time`` [s] in all). A fixed
-    2 s (1 s ramp, 1 s hold) stopped the default mesh 1.2° short of rest: the bent finger's
-    slowest mode creeps under the heavy damping.
-
-    Returns:
-        dict with ``bending_angle_deg`` (B1 to the tip element), ``element_angles_deg``,
-        ``tip_xz_m``, ``nodes``, ``settle_time_s`` (simulated), ``wall_time_s`` and
-        ``max_speed`` (m/s, rest check).
-
-    Raises:
-        SimulationUnstable: MuJoCo warned or the state became non-finite, or the finger did
-            not come to rest within ``max_time``.
-    """
-    cfg = replace(_relaxation_config(mesh or MeshResolution()), damping_ratio=damping_ratio)
-    ref = ReferenceFinger(params, cfg)
-    m, d = ref.model, ref.data
-    chunk = int(round(0.5 / cfg.timestep))
-    t0 = time.perf_counter()
-    previous = None
-    while True:
-        for _ in range(chunk):
-            ref.apply_cable(tension * min(1.0, d.time / ramp_time), ref.node_positions())
-            mujoco.mj_step(m, d)
-        check_stable(m, d, "static bend")
-        angles, tip = ref.measure(ref.node_positions())
-        bend = math.degrees(angles[-1] - angles[0])
-        if d.time > ramp_time and previous is not None and abs(bend - previous) < rest_tol_deg:
-            break
-        if d.time >= max_time:
-            moved = abs(bend - previous) if previous is not None else float("nan")
-            raise SimulationUnstable(f"static bend: not at rest after {max_time} s "
-                                     f"(bending still moves {moved:.3f}° per 0.5 s)")
-        previous = bend
-    deg = np.degrees(angles)
-    return {"bending_angle_deg": float(deg[-1] - deg[0]), "element_angles_deg": deg.tolist(),
-            "tip_xz_m": tip.tolist(), "nodes": ref.mesh.n_nodes, "settle_time_s": float(d.time),
-            "wall_time_s": time.perf_counter() - t0, "max_speed": float(np.abs(d.qvel).max())}
