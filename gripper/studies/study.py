@@ -1,48 +1,8 @@
-"""Design-parameter studies (paper 001's automated parameter investigation) on this gripper.
-
-A study file (TOML) names a base design, the parameters to vary and the responses to compute:
-
-```toml
-[study]
-name = "cut angle"
-base = "my_params.json"          # optional: a parameter file; defaults otherwise
-design = "one_at_a_time"         # or "factorial" or "latin_hypercube"
-points = 20                      # latin_hypercube only
-seed = 0                         # latin_hypercube sampling and grasp trials
-
-[vary]                           # dotted GripperParams paths
-"finger.cut_angle_deg" = [30, 40, 45, 50, 60]            # a list (one-at-a-time, factorial)
-"servo.spool_radius" = { min = 0.010, max = 0.025 }      # a range (latin_hypercube)
-
-[responses]
-bending = { r_max = 0.45 }                 # bending angle against r (the curve) + its figures
-tension_for_angle = { angle_deg = 90 }     # cable tension needed to bend that far [N]
-blocked_force = { r = 0.15 }               # tip force with the tip held at its straight position [N]
-grasp = { objects = ["block"], trials = 5 }  # success rate and peak contact force
-
-[objective]
-maximize = "bending_angle_max_deg"         # or minimize = "...", used for recommendations
-at_least = { grasp_block_success_rate = 1.0 }   # optional limits a recommended point must meet
-```
-
-Every design point is a complete, reproducible run built from parameters only (a pure function
-of the study and the point), so results do not depend on the number of workers. Points run on
-the benchmark's execution layer (:mod:`gripper.bench.execution`): a Dask LocalCluster by default, an
-existing cluster with ``scheduler``. ``results.jsonl`` is appended in point order (resumable);
-``results.csv`` is the tidy table (one row per point and response value); one PNG per varied
-parameter; ``recommendations.md``. A point that fails is recorded with its error and the study
-goes on.
-
-Hinge stiffness follows the design. A point that changes the finger's geometry (cut angle,
-bridge thickness, hole height, pitch or element count at a kept length) within the committed
-stiffness surrogate's ranges gets the base springs times the continuum reference's stiffness
-ratio (:mod:`gripper.calibration.surrogate`, leave-one-out error in ``docs/calibration.md``)
-and is marked ``calibrated = true``. Young's modulus scales the springs exactly (K ∝ E); a
-Shore A hardness change sets E by Gent's relation (A. N. Gent, Rubber Chem. Technol. 31, 1958:
-E [MPa] = 0.0981 (56 + 7.62336 S) / (0.137505 (254 − 2.54 S))), as a ratio to its value at the
-base hardness, so the base keeps paper 000's 0.44 MPa. Outside the surrogate (another base
-design, width or height changed, a value beyond its ranges) the bridge-beam rule
-k ∝ E·w·t³ sets the springs and the point is marked ``calibrated = false`` with the reason.
+"""Design-parameter studies (paper 001's automated parameter investigation) on this gripper: a
+study file (TOML: a base design, the parameters to vary, the design, the responses, an
+objective) read and checked once, its design points run on the benchmark's execution layer,
+the tidy table, the plots and the recommendations. The file format, the execution and how each
+point's hinge springs follow its design: ``docs/studies.md``.
 
 Example:
     >>> from gripper.studies.study import load_study
