@@ -8,12 +8,12 @@ import math
 import re
 
 import pytest
-from gripper.model.menagerie import parameter_table
 
 from gripper.core.fields import field_specs
 from gripper.core.params import _SECTIONS, GripperParams, parameter_help, parameter_rows
 from gripper.experiments.protocol import BendingConfig, GraspProtocol, TrialNoise
 from gripper.objects.scene_objects import Placement
+from gripper.sim.model_files import parameter_table
 
 CLASSES = [(name, cls) for name, cls in _SECTIONS.items()] + [("protocol", GraspProtocol), ("noise", TrialNoise),
                                                            ("bend", BendingConfig), ("placement", Placement)]

@@ -59,7 +59,13 @@ def main(argv: list[str] | None = None) -> int:
     except SimulationUnstable as e:
         print(f"gripper {args.command}: unstable simulation: {e}", file=sys.stderr)
         return EXIT_UNSTABLE
-    except OSError as e:
+    except BrokenPipeError:
+        # the reader stopped early (``gripper bend | head``): end quietly, as Python's docs
+        # advise, with stdout pointed at devnull so the interpreter's final flush cannot fail
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
+    except OSError as e:  # (after BrokenPipeError, one of its kind)
         # a path the system refused that no check above caught (a name too long for the file
         # system, a disk that filled up): one line, not a traceback
         where = f": {e.filename}" if e.filename and len(str(e.filename)) <= 60 else ""
@@ -71,12 +77,6 @@ def main(argv: list[str] | None = None) -> int:
         print(f"gripper {args.command}: interrupted; finished results are kept (rerun to resume)",
               file=sys.stderr)
         return EXIT_INTERRUPTED
-    except BrokenPipeError:
-        # the reader stopped early (``gripper bend | head``): end quietly, as Python's docs
-        # advise, with stdout pointed at devnull so the interpreter's final flush cannot fail
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        return EXIT_BROKEN_PIPE
 
 
 if __name__ == "__main__":  # pragma: no cover
