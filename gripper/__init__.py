@@ -72,7 +72,7 @@ _EXPORTS = {
     "record_trial_video": "gripper.render.video",
     "bending_figure": "gripper.render.figures",
     "success_plot": "gripper.render.figures",
-    "load_study": "gripper.studies.study",
+    "load_study": "gripper.studies.study_file",
     "run_study": "gripper.studies.study",
     "Envelope": "gripper.studies.envelope",
     "load_envelope": "gripper.studies.envelope",
@@ -111,7 +111,8 @@ if TYPE_CHECKING:  # static checkers and IDEs see the real names
     from gripper.render.video import record_trial_video
     from gripper.servo.sensing import ServoSensing
     from gripper.studies.envelope import Envelope, load_envelope, run_envelope
-    from gripper.studies.study import load_study, run_study
+    from gripper.studies.study import run_study
+    from gripper.studies.study_file import load_study
 
 
 def __getattr__(name: str) -> Any:

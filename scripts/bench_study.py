@@ -11,7 +11,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from gripper.studies.study import load_study, run_study
+from gripper.studies.study import run_study
+from gripper.studies.study_file import load_study
 
 STUDY = """
 [study]

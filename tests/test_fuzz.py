@@ -21,7 +21,7 @@ from gripper.calibration.measured import read_measured_csv
 from gripper.cli.main import main
 from gripper.core.params import GripperParams
 from gripper.objects.files import object_from_dict
-from gripper.studies.study import load_study
+from gripper.studies.study_file import load_study
 
 # CI runs the same examples every time (derandomize); a local run explores new ones.
 FUZZ = settings(max_examples=100, deadline=None, derandomize=os.environ.get("CI") == "true",

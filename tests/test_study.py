@@ -10,7 +10,7 @@ from helpers import kill_after_lines
 from gripper.cli.main import main
 from gripper.core.params import GripperParams
 from gripper.experiments.design_responses import blocked_tip_force
-from gripper.studies.study import apply_point, gent_modulus, load_study
+from gripper.studies.study_file import apply_point, gent_modulus, load_study
 
 STUDY = """
 [study]

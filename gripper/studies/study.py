@@ -1,356 +1,24 @@
 """Design-parameter studies (paper 001's automated parameter investigation) on this gripper: a
-study file (TOML: a base design, the parameters to vary, the design, the responses, an
-objective) read and checked once, its design points run on the benchmark's execution layer,
+study (:mod:`gripper.studies.study_file`) run on the benchmark's execution layer,
 the tidy table, the plots and the recommendations. The file format, the execution and how each
 point's hinge springs follow its design: ``docs/studies.md``.
 
 Example:
-    >>> from gripper.studies.study import load_study
-    >>> study = load_study("one_at_a_time")   # doctest: +SKIP
+    >>> from gripper.studies.study import run_study
+    >>> from gripper.studies.study_file import load_study
+    >>> run_study(load_study("one_at_a_time"), "runs/oat")   # doctest: +SKIP
 """
 
 from __future__ import annotations
 
-import dataclasses
-import itertools
-import math
-import re
 import time
-import tomllib
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from gripper.bench.defaults import DEFAULT_WORKERS
 from gripper.core.atomic import write_csv_atomic, write_text_atomic
-from gripper.core.hashing import stable_hash
-from gripper.core.params import GripperParams
-from gripper.core.resources import STUDIES_DIR
-from gripper.core.user_files import read_user_text
 from gripper.experiments.design_responses import measure_responses
-
-DESIGNS = ("one_at_a_time", "factorial", "latin_hypercube")
-RESPONSES: dict[str, dict[str, type]] = {
-    "bending": {"r_max": float, "duration": float},
-    "tension_for_angle": {"angle_deg": float},
-    "blocked_force": {"r": float},
-    "grasp": {"objects": list, "trials": int},
-}
-# Parameters whose change alters the finger's bending and so would void a calibration.
-CALIBRATION_SECTIONS = ("finger.", "material.", "springs.")
-BRIDGE_RULE = "hinge stiffness scaled by the bridge-beam rule k ∝ E·w·t³ (not fitted)"
-
-
-def gent_modulus(shore_a: float) -> float:
-    """Young's modulus [Pa] from Shore A hardness by Gent's empirical relation (1958)."""
-    return 0.0981e6 * (56.0 + 7.62336 * shore_a) / (0.137505 * (254.0 - 2.54 * shore_a))
-
-
-@dataclass(frozen=True)
-class Study:
-    """A parsed, validated study (see the module docstring for the file format)."""
-
-    name: str
-    base: GripperParams
-    design: str
-    vary: dict
-    responses: dict
-    objective: tuple[str, str] | None = None
-    limits: tuple = ()  # ("at_least" | "at_most", metric, value): points a recommendation may use
-    points: int = 0
-    seed: int = 0
-    source: str = ""
-    lines: dict = field(default_factory=dict, compare=False)
-
-    def design_points(self) -> list[dict]:
-        """The parameter changes of every point, in a fixed order (point 0 is the base)."""
-        pts: list[dict] = [{}]
-        if self.design == "one_at_a_time":
-            for key, values in self.vary.items():
-                pts += [{key: v} for v in values]
-        elif self.design == "factorial":
-            keys = list(self.vary)
-            pts += [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*self.vary.values())]
-        else:
-            from scipy.stats import qmc
-
-            keys = list(self.vary)
-            u = qmc.LatinHypercube(d=len(keys), seed=self.seed).random(self.points)
-            for row in u:
-                pt = {}
-                for k, x in zip(keys, row, strict=True):
-                    lo, hi = self.vary[k]["min"], self.vary[k]["max"]
-                    v = lo + x * (hi - lo)
-                    pt[k] = int(round(v)) if isinstance(_get(self.base, k), int) else float(v)
-                pts.append(pt)
-        return pts
-
-    def identity(self) -> dict:
-        from gripper.core.provenance import versions
-
-        return {"versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")},
-                "name": self.name, "base": self.base.to_dict(), "design": self.design, "vary": self.vary,
-                "responses": self.responses, "objective": self.objective, "limits": self.limits,
-                "points": self.points,
-                "seed": self.seed}
-
-    def hash(self) -> str:
-                return stable_hash([self.identity()])
-
-
-def _get(p: GripperParams, dotted: str):
-    section, _, name = dotted.partition(".")
-    return getattr(getattr(p, section), name)
-
-
-def _key_line(text: str, key: str) -> int:
-    """Line number of ``key`` in the TOML text (for error messages): the line that sets it (the
-    last part of a dotted key), else its section's header; 0 if neither is found."""
-    lines = text.splitlines()
-    for k in dict.fromkeys((key, key.split(".")[-1])):
-        pat = re.compile(r'^\s*"?' + re.escape(k) + r'"?\s*=')
-        for i, line in enumerate(lines, 1):
-            if pat.match(line):
-                return i
-    header = re.compile(r"^\s*\[\s*" + re.escape(key.split(".")[0]) + r"\s*\]")
-    return next((i for i, line in enumerate(lines, 1) if header.match(line)), 0)
-
-
-def apply_point(base: GripperParams, changes: dict) -> tuple[GripperParams, list[str]]:
-    """The design of one point, and the reasons it is not calibrated (empty: calibrated).
-
-    A point that changes the finger's geometry within the committed stiffness surrogate's
-    ranges (:mod:`gripper.calibration.surrogate`) gets the base springs times the surrogate's
-    stiffness ratio (and the exact E ratio): calibrated on the continuum reference. Otherwise
-    the bridge-beam rule sets them and the point is marked not calibrated, with the reason.
-    """
-    p = base
-    for key, value in changes.items():
-        section, _, name = key.partition(".")
-        sub = getattr(p, section)
-        if isinstance(getattr(sub, name), tuple):
-            value = (value,)
-        p = p.replace(**{section: dataclasses.replace(sub, **{name: value})})
-    if "finger.n_segments" in changes and "finger.pitch" not in changes:
-        length = base.finger.pitch * base.finger.n_segments
-        p = p.replace(finger=dataclasses.replace(p.finger, pitch=length / p.finger.n_segments))
-    if "material.shore_a" in changes and "material.youngs_modulus" not in changes:
-        e = base.material.youngs_modulus * gent_modulus(p.material.shore_a) / gent_modulus(base.material.shore_a)
-        p = p.replace(material=dataclasses.replace(p.material, youngs_modulus=e))
-    e_ratio = p.material.youngs_modulus / base.material.youngs_modulus
-    geometry = {k: _get(p, k) for k in SURROGATE_DIMENSIONS if _get(p, k) != _get(base, k)}
-    surrogate, why_not = _surrogate_for(base, p, changes)
-    reasons = []
-    if "springs.stiffness" in changes:
-        if any(k.startswith(("finger.", "material.")) for k in changes):
-            reasons.append("springs set by hand while the finger or silicone changed")
-    elif surrogate is not None:
-        scale = e_ratio * surrogate.ratio(geometry, base)
-        if scale != 1.0:
-            k = tuple(v * scale for v in base.springs.stiffness)
-            if p.finger.n_hinges != base.finger.n_hinges:
-                k = (float(np.mean(k)),)
-            p = p.replace(springs=dataclasses.replace(p.springs, stiffness=k))
-    else:
-        scale = (e_ratio * (p.finger.width / base.finger.width)
-                 * (p.finger.bridge_thickness / base.finger.bridge_thickness) ** 3)
-        if scale != 1.0:
-            k = tuple(v * scale for v in base.springs.stiffness)
-            if p.finger.n_hinges != base.finger.n_hinges:
-                k = (float(np.mean(k)),)
-            p = p.replace(springs=dataclasses.replace(p.springs, stiffness=k))
-        if any(k.startswith(CALIBRATION_SECTIONS) for k in changes):
-            reasons.append(f"{why_not}; " + BRIDGE_RULE)
-    return p.validate(), reasons
-
-
-SURROGATE_DIMENSIONS = ("finger.cut_angle_deg", "finger.bridge_thickness", "finger.hole_height",
-                        "finger.pitch")
-_SURROGATE_CACHE: dict = {}
-
-
-def _surrogate_for(base: GripperParams, p: GripperParams, changes: dict):
-    """The committed stiffness surrogate if it covers this point, else (None, the reason)."""
-    from gripper.calibration.surrogate import StiffnessSurrogate
-
-    other = [k for k in changes if k.startswith(("finger.", "material."))
-             and k not in SURROGATE_DIMENSIONS
-             and k not in ("finger.n_segments", "material.shore_a", "material.youngs_modulus")]
-    if other:
-        return None, f"{', '.join(other)} changed, outside the stiffness surrogate's dimensions"
-    default = GripperParams()
-    if base.finger != default.finger or base.material != default.material:
-        return None, "the base design is not the default one the surrogate was built around"
-    if "s" not in _SURROGATE_CACHE:
-        _SURROGATE_CACHE["s"] = StiffnessSurrogate.load_default()
-    s = _SURROGATE_CACHE["s"]
-    for k in SURROGATE_DIMENSIONS:
-        lo, hi = s.ranges[k]
-        if not lo - 1e-12 <= _get(p, k) <= hi + 1e-12:
-            return None, f"{k} = {_get(p, k):g} is outside the stiffness surrogate's range"
-    return s, ""
-
-
-def load_study(path: str | Path) -> Study:
-    """Parse and validate a study file; every error names the key and its line.
-
-    ``path`` is a file, or the name of a study shipped with the package (``one_at_a_time``,
-    ``latin_hypercube``: ``gripper/data/studies``), so the examples work from an installed wheel.
-
-    Raises:
-        ValueError: unreadable file, bad TOML, unknown key or parameter, wrong type, value out of
-            range (checked by building every design point before any work starts).
-    """
-    path = Path(path)
-    shipped = STUDIES_DIR / f"{path.name}.toml"
-    if not path.exists() and path.suffix == "" and path.parent == Path(".") and shipped.is_file():
-        path = shipped
-    text = read_user_text(path, "study")
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as e:
-        raise ValueError(f"study: {path} is not valid TOML ({e})") from None
-
-    def err(key, msg):
-        line = _key_line(text, key.split(".")[-1] if key.startswith("responses.") else key)
-        return ValueError(f"study: {path}:{line}: {key}: {msg}")
-
-    for section in data:
-        if section not in ("study", "vary", "responses", "objective"):
-            raise err(section, "unknown section; allowed: study, vary, responses, objective")
-        if not isinstance(data[section], dict):
-            raise err(section, f"must be a table ([{section}]), got {data[section]!r}")
-    if "study" not in data:
-        raise ValueError(f"study: {path}: no [study] section; a study file starts with [study] "
-                         "(see the shipped one_at_a_time.toml)")
-    st = data["study"]
-    for k in st:
-        if k not in ("name", "base", "design", "points", "seed"):
-            raise err(k, "unknown key in [study]; allowed: name, base, design, points, seed")
-    for k in ("name", "base", "design"):
-        if k in st and not isinstance(st[k], str):
-            raise err(k, f"must be text, got {st[k]!r}")
-    if "name" in st and (len(st["name"]) > 100 or not st["name"].isprintable()):
-        raise err("name", f"a title of at most 100 printable characters on one line, got {len(st['name'])} "
-                  "characters")
-    design = st.get("design", "one_at_a_time")
-    if design not in DESIGNS:
-        raise err("design", f"must be one of {', '.join(DESIGNS)}, got {design!r}")
-    base = GripperParams()
-    if st.get("base"):
-        bpath = Path(st["base"])
-        if not bpath.is_absolute():
-            bpath = path.parent / bpath
-        try:
-            base = GripperParams.load(bpath)
-        except ValueError as e:
-            raise err("base", str(e)) from None
-    points = st.get("points", 0)
-    seed = st.get("seed", 0)
-    if not isinstance(seed, int) or isinstance(seed, bool):
-        raise err("seed", f"must be an integer, got {seed!r}")
-    if design == "latin_hypercube" and (not isinstance(points, int) or not 1 <= points <= 100_000):
-        raise err("points", f"must be an integer in [1, 100000] for a latin_hypercube, got {points!r}")
-    vary = data.get("vary", {})
-    if not vary:
-        raise err("vary", "give at least one parameter to vary")
-    for key, spec in vary.items():
-        section, _, name = key.partition(".")
-        sub = getattr(base, section, None)
-        if sub is None or not dataclasses.is_dataclass(sub) or name not in {f.name for f in dataclasses.fields(sub)}:
-            raise err(key, "unknown parameter; use a dotted GripperParams path such as finger.cut_angle_deg")
-        current = getattr(sub, name)
-        want = int if isinstance(current, int) and not isinstance(current, bool) else (
-            float if isinstance(current, float | tuple) else type(current))
-        if design == "latin_hypercube":
-            if not isinstance(spec, dict) or set(spec) != {"min", "max"}:
-                raise err(key, "needs a range { min = ..., max = ... } for a latin_hypercube")
-            values = [spec["min"], spec["max"]]
-        else:
-            if not isinstance(spec, list) or not spec:
-                raise err(key, f"needs a non-empty list of values for a {design} study")
-            values = spec
-        for v in values:
-            ok = isinstance(v, int | float) and not isinstance(v, bool) if want is float else isinstance(v, want)
-            if not ok or (isinstance(v, float) and not math.isfinite(v)):
-                raise err(key, f"expected {want.__name__} values, got {v!r}")
-        if design == "latin_hypercube" and not values[0] < values[1]:
-            raise err(key, f"min must be < max, got {values}")
-        vary[key] = [want(v) for v in values] if design != "latin_hypercube" else {"min": values[0], "max": values[1]}
-    responses = data.get("responses", {})
-    if not responses:
-        raise err("responses", f"give at least one response; allowed: {', '.join(RESPONSES)}")
-    for name, opts in responses.items():
-        if name not in RESPONSES:
-            raise err("responses." + name, f"unknown response; allowed: {', '.join(RESPONSES)}")
-        if not isinstance(opts, dict):
-            raise err("responses." + name, "must be a table, e.g. { r_max = 0.45 }")
-        for k, v in opts.items():
-            typ = RESPONSES[name].get(k)
-            if typ is None:
-                raise err("responses." + name, f"unknown option {k!r}; allowed: {', '.join(RESPONSES[name])}")
-            if typ is float and not (isinstance(v, int | float) and not isinstance(v, bool) and v > 0):
-                raise err("responses." + name, f"{k} must be a number > 0, got {v!r}")
-            if typ is int and not (isinstance(v, int) and not isinstance(v, bool) and v >= 1):
-                raise err("responses." + name, f"{k} must be an integer >= 1, got {v!r}")
-            if typ is list:
-                from gripper.objects.library import get_object
-                if not isinstance(v, list) or not v:
-                    raise err("responses." + name, f"{k} must be a non-empty list of object names")
-                for o in v:
-                    try:
-                        get_object(o)
-                    except ValueError as e:
-                        raise err("responses." + name, str(e)) from None
-    objective = None
-    obj = dict(data.get("objective", {}))
-    limits: dict = {}
-    for bound in ("at_least", "at_most"):
-        table = obj.pop(bound, {})
-        if not isinstance(table, dict):
-            raise err(bound, "must be a table of metric = number, e.g. { grasp_block_success_rate = 1.0 }")
-        for k, v in table.items():
-            if k not in metric_names(responses) or not (isinstance(v, int | float) and not isinstance(v, bool)):
-                raise err(bound, f"{k} = {v!r}: need a metric of the responses ({', '.join(metric_names(responses))}) "
-                                 "and a number")
-            limits[(bound, k)] = float(v)
-    if obj:
-        if len(obj) != 1 or next(iter(obj)) not in ("maximize", "minimize"):
-            raise err("objective", "give exactly one of maximize = \"...\" or minimize = \"...\"")
-        sense, metric = next(iter(obj.items()))
-        objective = (sense, str(metric))
-    study = Study(name=str(st.get("name", path.stem)), base=base, design=design, vary=vary, responses=responses,
-                  objective=objective, points=points, seed=seed, source=str(path),
-                  limits=tuple((b, k, v) for (b, k), v in limits.items()))
-    for pt in study.design_points():  # every point must build before any work starts
-        try:
-            apply_point(base, pt)
-        except ValueError as e:
-            key = next(iter(pt)) if pt else "base"
-            raise err(key, f"value {pt.get(key)!r} gives an invalid design ({e})") from None
-    if objective is not None and objective[1] not in metric_names(responses):
-        raise err(f"objective.{objective[0]}",
-                  f"unknown metric {objective[1]!r}; available: {', '.join(metric_names(responses))}")
-    return study
-
-
-def metric_names(responses: dict) -> list[str]:
-    names = []
-    if "bending" in responses:
-        names += ["bending_angle_max_deg", "bending_angle_at_half_r_deg", "tension_at_r_max_N"]
-    if "tension_for_angle" in responses:
-        names += ["tension_for_angle_N"]
-    if "blocked_force" in responses:
-        names += ["blocked_tip_force_N"]
-    if "grasp" in responses:
-        from gripper.objects.library import get_object
-
-        for o in responses["grasp"].get("objects", ["block"]):
-            name = get_object(o).name  # an object file's own name, not its path
-            names += [f"grasp_{name}_success_rate", f"grasp_{name}_median_peak_force_N"]
-    return names
+from gripper.studies.study_file import Study, apply_point, get_dotted, metric_names
 
 
 def run_point(study: Study, index: int, changes: dict) -> dict:
@@ -401,7 +69,7 @@ def write_table(records: list[dict], study: Study, path: Path) -> None:
     keys = list(study.vary)
     rows = []
     for r in records:
-        vals = [r["changes"].get(k, _get(study.base, k)) for k in keys]
+        vals = [r["changes"].get(k, get_dotted(study.base, k)) for k in keys]
         vals = [v[0] if isinstance(v, tuple | list) else v for v in vals]
         if r["status"] != "ok":
             rows.append([r["point"], *vals, "error", "", "", "", r.get("error", "")])
@@ -414,7 +82,7 @@ def _series(records: list[dict], study: Study, key: str) -> list[tuple[float, di
     """(value of ``key``, record) of the points that show the effect of ``key``: the base plus
     the points varying only ``key`` (one-at-a-time), or every point (factorial, hypercube)."""
     out = []
-    base_value = _get(study.base, key)
+    base_value = get_dotted(study.base, key)
     base_value = base_value[0] if isinstance(base_value, tuple) else base_value
     for r in records:
         if r["status"] != "ok":

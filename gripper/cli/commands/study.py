@@ -23,7 +23,8 @@ def add(sub) -> None:
 
 
 def run(args) -> int:
-    from gripper.studies.study import RUN_FILES, load_study, run_study
+    from gripper.studies.study import RUN_FILES, run_study
+    from gripper.studies.study_file import load_study
 
     check_output_dir(args.out, files=RUN_FILES)
     study = load_study(args.file)
