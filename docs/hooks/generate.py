@@ -83,8 +83,8 @@ def _rl_hyperparams() -> str:
 
 def _env_arguments() -> str:
     """The environment's arguments: EnvConfig's declared fields, then the others."""
+    from gripper.envs.config import DEFAULT_REWARD_WEIGHTS, EnvConfig
     from gripper.envs.grasp_env import RENDER_ARGUMENTS
-    from gripper.envs.task import DEFAULT_REWARD_WEIGHTS, EnvConfig
 
     rows = [_fields_table(((EnvConfig, "env"),)).replace("| env.", "| ")]
     rows += ['| objects | ("block", "cylinder") | - | library names, object files or "a,b" | sampled per episode '

@@ -14,10 +14,10 @@ import numpy as np
 from gymnasium import spaces
 
 from gripper.core.params import GripperParams
+from gripper.envs.config import EnvConfig
 from gripper.envs.registration import ENV_ID
 from gripper.envs.task import (
     BatchStepper,
-    EnvConfig,
     EpisodeState,
     SceneSet,
     evaluate,
@@ -229,7 +229,7 @@ class SoftGripperGraspEnv(gym.Env):
     ## Arguments
 
     ``gymnasium.make("gripper:SoftGripperGrasp-v5", **kwargs)``: the fields of
-    :class:`gripper.envs.task.EnvConfig` (each declared once there, with its unit, range and
+    :class:`gripper.envs.config.EnvConfig` (each declared once there, with its unit, range and
     reason; the table is generated into ``docs/environment.md``), ``params`` (a GripperParams or
     a parameter file), ``calibration`` (a ``gripper calibrate`` file) and the renderer's
     ``render_mode``, ``width``, ``height``, ``camera``.

@@ -7,24 +7,34 @@ the rollout's final state and last sensor row, so a single environment and one s
 environment produce bitwise the same episode for the same seed.
 
 Example:
-    >>> from gripper.envs.task import EnvConfig
-    >>> EnvConfig(objects=("block",), action_mode="synergy").validate().action_size
-    2
+    >>> from gripper.envs.config import EnvConfig
+    >>> from gripper.envs.task import observation_structure
+    >>> observation_structure(EnvConfig().validate())["hinge_angle"]
+    (0, 20, 'rad')
 """
 
 from __future__ import annotations
 
-import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
 
-from gripper.core.fields import Validated, param
-from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
-from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
+from gripper.envs.config import (
+    CONTACT_FORCE,
+    HELD,
+    IDENTITY_QUAT,
+    REACH_SCALE,
+    START_CLEARANCE,
+    TIP_FLOOR_CLEARANCE,
+    WORKSPACE_FLOOR,
+    WORKSPACE_RADIUS,
+    XY_ACTION_RANGE,
+    EnvConfig,
+)
+from gripper.experiments.protocol import TrialNoise, is_held
 from gripper.experiments.trial import sample_placement
 from gripper.model.names import finger_name
 from gripper.objects.grasp_object import GraspObject
@@ -37,113 +47,6 @@ from gripper.sim.scene import build_grasp_scene
 from gripper.sim.stepping import STATE_SPEC
 
 CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
-
-# Physics step of the environments [s]: the grasp trials' 2 ms (see GraspProtocol.timestep).
-# Palm-face height at the start of an episode, above the object's top plus the finger length [m]:
-# 10 mm keeps the straight fingertips clear of the object's top at any sampled offset.
-START_CLEARANCE = 0.010
-# Lowest palm set-point: fingertips 4 mm above the floor [m] (they must not dig into it).
-TIP_FLOOR_CLEARANCE = 0.004
-# Horizontal set-point range of the x/y actions [m]: ±20 mm covers the ±10 mm pose noise twice.
-XY_ACTION_RANGE = 0.020
-# Palm speed at a velocity action of +-1 [m/s] (``palm_control="velocity"``): the scripted grasp's
-# approach and lift speed (scripts/scripted_policy.py).
-PALM_SPEED = 0.10
-# Workspace: the object has left it beyond this horizontal distance from the palm axis's home
-# [m] (a gripper of 57 mm radius cannot reach it) or below the floor by 20 mm (fell through).
-WORKSPACE_RADIUS = 0.15
-WORKSPACE_FLOOR = -0.020
-IDENTITY_QUAT = np.array([1.0, 0.0, 0.0, 0.0])  # orientation reported for a flex object
-
-# A finger touches the object above this normal force [N] (the contact reward).
-CONTACT_FORCE = 0.05
-# Length scale of the reach reward [m]: 1 - tanh(d / REACH_SCALE) falls from 0.52 at the
-# benchmark's grasp pose over the block (d = 26 mm) to 0.06 at the start (d = 88 mm).
-REACH_SCALE = 0.05
-DEFAULT_REWARD_WEIGHTS = {
-    "reach": 1.0,     # times 1 - tanh(distance between the grasp point and the object / REACH_SCALE)
-    # fraction of fingers pressing on the object: 0 by default, since paying for touch taught PPO
-    # to touch with half-closed fingers during the descent and stop there (docs/environment.md)
-    "contact": 0.0,
-    "lift": 2.0,      # object rise above its start / success height, clipped to [0, 1]
-    "success": 5.0,   # per control step at which the grasp counts as held
-    "damage": 10.0,   # once, when the object is damaged
-    "action": 0.01,   # per unit squared action norm
-}
-
-
-# The benchmark's held grasp (lifted, not slipping): the environment's success uses the same rule
-# and numbers (gripper.experiments.protocol.is_held).
-HELD = GraspProtocol()
-
-
-@dataclass(frozen=True)
-class EnvConfig(Validated):
-    """Everything that defines the environment, validated once (SI units). Each scalar argument
-    is declared here once with :func:`gripper.core.fields.param`; the environment's keyword
-    arguments, its pickling and the docs' argument table (``docs/environment.md``) follow from
-    these fields.
-    """
-
-    SECTION = "env"
-
-    objects: tuple[str, ...] = ("block", "cylinder")
-    pose_noise: float = param(0.010, "m", ge=0, le=0.02,
-                              source="x/y offset range ±, the benchmark's placement noise")
-    yaw_noise: bool = param(True, "-", source="random yaw for objects that are not symmetric")
-    mass_noise: float = param(0.0, "-", ge=0, le=0.9, source="± fraction on the object's mass")
-    friction_noise: float = param(0.0, "-", ge=0, le=0.9, source="± fraction on the object's friction")
-    action_mode: str = param("fingers", "-", choices=("fingers", "synergy"),
-                             source="one closing action per finger, or one for all")
-    xy_actions: bool = param(False, "-", source="add palm x/y actions (needs params.lift.xy_enabled)")
-    palm_control: str = param("velocity", "-", choices=("velocity", "position"),
-                              source="palm actions as velocities (integrated) or set-points")
-    palm_speed: float = param(PALM_SPEED, "m/s", gt=0, le=1.0,
-                              source="palm speed at a velocity action of ±1: the scripted grasp's")
-    servo_control: str = param("velocity", "-", choices=("velocity", "position"),
-                               source="servo actions as velocities (integrated) or set-points")
-    frame_skip: int = param(10, "-", ge=1, le=500, integer=True,
-                            source="physics steps (2 ms) per control step: a 20 ms control period")
-    reward_type: str = param("dense", "-", choices=("dense", "sparse"), source="see Rewards")
-    reward_weights: dict = field(default_factory=lambda: dict(DEFAULT_REWARD_WEIGHTS))
-    terminate_on_success: bool = param(False, "-", source="end the episode once the grasp is held")
-    success_hold_s: float = param(1.0, "s", gt=0, le=60,
-                                  source="held this long counts as success (the benchmark holds 2 s)")
-    params: GripperParams = field(default_factory=GripperParams)
-
-    def check(self) -> None:
-        if isinstance(self.objects, str) or not self.objects:
-            raise ValueError(f"env.objects: expected a non-empty list of object names, got {self.objects!r}")
-        for name in self.objects:
-            get_object(name)  # raises with the allowed names
-        unknown = set(self.reward_weights) - set(DEFAULT_REWARD_WEIGHTS)
-        if unknown:
-            raise ValueError(f"env.reward_weights: unknown terms {sorted(unknown)}; allowed: "
-                             f"{', '.join(DEFAULT_REWARD_WEIGHTS)}")
-        for k, v in self.reward_weights.items():
-            if isinstance(v, bool) or not (isinstance(v, int | float) and math.isfinite(v)):
-                raise ValueError(f"env.reward_weights.{k}: must be a finite number, got {v!r}")
-        if self.xy_actions and not self.params.lift.xy_enabled:
-            raise ValueError("env.xy_actions: needs params.lift.xy_enabled = true")
-        self.params.validate()
-
-    @property
-    def n_fingers(self) -> int:
-        return self.params.layout.n_fingers
-
-    @property
-    def action_size(self) -> int:
-        n = self.n_fingers if self.action_mode == "fingers" else 1
-        return n + 1 + (2 if self.xy_actions else 0)
-
-    @property
-    def control_period(self) -> float:
-        return self.frame_skip * TRIAL_TIMESTEP
-
-    @functools.cached_property
-    def weights(self) -> dict:
-        """The reward weights in effect (defaults overridden by ``reward_weights``)."""
-        return {**DEFAULT_REWARD_WEIGHTS, **self.reward_weights}
 
 
 def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:

@@ -84,7 +84,7 @@ class TrainConfig(Validated):
         from gripper.rl.hyperparams import hyperparams_for
 
         hyperparams_for(self.algo, self.hyperparams)  # raises on an unknown or bad override
-        from gripper.envs.task import EnvConfig
+        from gripper.envs.config import EnvConfig
 
         EnvConfig(objects=tuple(self.objects), reward_weights=dict(self.reward_weights)).validate()
         return self
