@@ -1,40 +1,9 @@
 """Mesh convergence of the continuum reference: Richardson extrapolation, grid convergence index
-and the stiffness correction the default mesh needs.
 
-**What is converged.** The quantity the hinge springs are fitted to is the finger's bending
-stiffness. At a small check load the reference's MuJoCo flex (Saint Venant-Kirchhoff on linear
-tetrahedra) is a linear-elastic system, so its bending compliance ``d(bending)/dT`` [deg/N] on a
-given mesh is the solution of one sparse linear system: :func:`linear_compliance` assembles it
-with scikit-fem on exactly the reference's mesh, clamp, knot load and volume-weighted element
-rotations, and solves it with conjugate gradients preconditioned by smoothed aggregation (pyamg).
-It agrees with MuJoCo's own dynamic relaxation of the same mesh at 0.01 N within about 1 %
-(the flex's geometric nonlinearity at 4° of bending; test ``test_linear_compliance_matches_flex``)
-and costs seconds where a relaxation of a fine mesh takes hours, which is what makes a
-convergence study of the reference affordable.
-
-**Refinement.** The meshes are ``MeshResolution(scale=s)``: every cell count times ``s``, so
-the cell size is ``h = 1/s`` of the default's in every direction (systematic refinement).
-:func:`mesh_convergence` solves ``s = 1`` (the default) and three finer levels (2, 3, 4 by
-default), and extrapolates the three finest (Richardson, with the observed order ``p`` from the
-three, as in Celik et al. 2008, J. Fluids Eng. 130(7), 078001). The grid convergence index
-``GCI = 1.25 |f_1 - f_2| / |f_1| / (r^p - 1)`` of the finest pair is the relative
-uncertainty band of the finest solution.
-
-**Why the default mesh is too stiff.** Each cut's apex is a re-entrant corner of 315° on the
-bridge top, where the elastic strain is singular (Williams' corner solution, exponent
-lambda ≈ 0.505 for 315°), so the energy error of any uniformly refined mesh falls only as
-``h^(2·lambda) ≈ h^1``: the observed order of the default design is about 1.1, and the default
-mesh (4 cells along an element) is about 30 % too stiff. Volumetric locking of the linear
-tetrahedra at Poisson's ratio 0.48 is a small part of it (see ``docs/calibration.md``): the same
-meshes at 0.3 show nearly the same error. A mesh converged to 2 % would need several hundred
-thousand nodes; MuJoCo's dynamic reference on it would take days.
-
-**The fix.** The reference runs on the default mesh with its Young's modulus scaled by
-``stiffness_correction = f_default / f_extrapolated`` (:attr:`ReferenceConfig.modulus_factor`).
-Compliance of a linear-elastic body scales exactly as 1/E, so the corrected default mesh has the
-extrapolated (converged) small-load compliance, and the large bending of the record keeps the
-flex's own geometric nonlinearity. The fit then targets the extrapolated record, not the
-default mesh's.
+The bending compliance at a small check load is one sparse linear solve on each mesh
+(scikit-fem on the reference's own tetrahedra), so meshes refined systematically give a
+Richardson extrapolation, a grid convergence index and the stiffness correction the default
+mesh needs. Method and figures: ``docs/calibration.md``, "How convergence is measured".
 
 Example:
     >>> from gripper.calibration.convergence import mesh_convergence

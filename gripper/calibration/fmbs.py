@@ -1,48 +1,10 @@
 """Paper 000's own flexible multibody model of the finger, as a second reference kind.
 
-Paper 000 (§III-IV) divides the actuator into six elements B1..B6, "each an independent soft
-body" (ANSYS modal bodies in ADAMS), B1 fixed, neighbours joined at the bridges by hinges
-h2..h6 that carry torsion springs M2..M6 (Table 2: 1.9e-3 N·m/deg, damping "10 N·m·s/deg"),
-the cable acting through equivalent forces at points A_i; run for 2 s at 5e-4 s.
-
-Here, in MuJoCo:
-
-* **Elements** are flexible bodies of the paper's silicone (E 0.44 MPa, ν 0.48, 1120 kg/m³,
-  Tables 1-2): each element's own solid, meshed as the continuum reference is
-  (:mod:`gripper.calibration.mesh`) but with every bridge cut at its middle
-  (``MeshResolution(split_bridges=True)``), so the elements share no material. MuJoCo has no
-  modal bodies; a linear-tetrahedron flex of each element is the full-order body that the
-  paper's 30 retained modes (Table 2) approximate. Its discretisation stiffness is corrected
-  like the continuum reference's (:attr:`ReferenceConfig.modulus_factor`).
-* **Joints**: in paper 000 the bridge *is* the hinge and its spring, so the elements'
-  flexible bodies must not bend there too. Each element's silicone next to a bridge (the root
-  of the teeth beside the cut's apex, where the strain of the continuum body concentrates:
-  the first 14.6 % of the element's length, 2.3 mm at the default bridge, see
-  :func:`rigid_zones`) is held rigid, as an interface (the connection points B_i,
-  C_i of paper 000 Fig. 3): the zone of the element before the bridge by a body with the planar
-  dofs (x, z slides, rotation about y), the zone after it by a child body joined to it by a
-  hinge about y through the bridge's neutral axis, carrying the torsion spring and damper. The
-  flexible bodies are the rest of each element. (With only the bridge's middle face rigid,
-  each element kept half of the bridge's own compliance and the finger bent like the continuum
-  body whatever the spring: a first trial put hinge B5-B6 past closure at 2.9 N with the
-  0.109 N·m/rad spring, where the spring alone holds it at 16°.) B1 is clamped over the half
-  of its length in the mount, as in the continuum reference. The tip element's distal zone is
-  held rigid too (connection point A_6) and takes the knot's force, which
-  otherwise crushed the channel rim at the per-degree reading's tensions of several newtons.
-* **Cable**: the same equivalent forces as the continuum reference (one via point per element
-  on its channel wall, the knot at the tip), recomputed from the deformed shape every step.
-* **Damping**: the elements carry the continuum reference's mass-proportional modal damping
-  (Table 2's modal damping 0.5 at the first bending mode); the hinges carry
-  :attr:`FmbsConfig.hinge_damping`. Table 2's "10 N·m·s/deg" with its 1.9e-3 N·m/deg spring is
-  a relaxation time c/K of 5263 s whichever angle unit both are read in: a finger with that
-  damper barely starts to bend in the paper's 2 s (run it with ``hinge_damping="paper"`` to
-  see). The default hinge damper instead gives the chain's first mode Table 2's modal damping
-  0.5 (:meth:`FmbsFinger.modal_hinge_damping`).
-
-**Both readings of K.** The stiffness is printed per degree (0.109 N·m/rad); the unit may be as
-wrong as the damper's, so :attr:`FmbsConfig.reading` also takes ``"per_radian"``
-(1.9e-3 N·m/rad). The tension of the test is scaled to the reading's spring
-(:func:`fmbs_tension_max`), so that both bend the finger about as far with the cuts open.
+Paper 000 (§III-IV) divides the actuator into six flexible elements joined at the bridges by
+hinges carrying Table 2's torsion springs, bent by the cable's equivalent forces. Here each
+element is a MuJoCo flex of the paper's silicone and the hinges carry Table 2's spring, read per
+degree (as printed) or per radian. How it is built: ``docs/calibration.md``, "Paper 000's
+flexible multibody model".
 
 Example:
     >>> from gripper.calibration.fmbs import FmbsConfig, run_fmbs

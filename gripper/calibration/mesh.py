@@ -1,41 +1,9 @@
 """Tetrahedral mesh of the silicone finger body, built from :class:`FingerGeometry`.
 
-The body is meshed the way it is moulded: a bar of ``n_segments`` elements, each cut from its
-neighbours by a triangular notch whose apex sits on the bridge top, with a cable channel through
-every element. The mesh is *mapped*: each element is a structured block of hexahedral cells whose
-columns lean with the cut faces above the bridge, so the cut faces are exact planes of the mesh;
-below the bridge top the elements share their boundary nodes, so the bridges are continuous.
-Every hexahedron is split into 24 tetrahedra around a node at its centre and one at the centre of
-each face (``split="centre24"``); the face nodes are shared, so neighbouring cells conform.
-
-Choices (written down because no paper gives them):
-
-* **Cable channel**: the 6 mm round hole (paper 000 §II) is carved as a square channel of the
-  same cross-section area (side ``d·sqrt(pi)/2`` = 5.3 mm), aligned with the grid, so the mesh
-  needs no curved faces. The channel runs through each element along x.
-* **Grading**: nodes along each element are spaced by a cosine law, fine at both ends (2.3 mm at
-  the default resolution) where the bridges bend, coarse in the stiff middle of the element.
-  Through the height, the cells shrink geometrically towards the bridge top (``bridge_grading``,
-  largest over smallest cell, 3 by default: cells of 0.75 mm below and 1.6 mm above it meet
-  there): each cut's apex sits on the bridge top, a re-entrant corner where the strain
-  concentrates (singular in the elastic solution), and cells graded towards it converge faster.
-  Measured on the static bend at 0.15 N (4 cells per element): the bending rises from 70.9°
-  (uniform) to 73.6° (ratio 2.5), 73.9° (3) and 74.4° (5), for 5 % (2.5) and 14 % (5) more
-  time per step; with 3 the reference run took 106 s against 103 s uniform.
-* **Resolution**: ``MeshResolution.scale`` multiplies every cell count; 1 is the default used
-  for calibration.
-* **Symmetry**: the finger, its cable (on the centre line) and its bending are symmetric about the
-  bending plane y = 0, so by default only the half y >= 0 is meshed (``symmetric=True``); the
-  reference model holds the nodes on the plane in it and applies half of each load. This is the
-  half of a full mesh with twice the cells across the channel (1903 nodes against 3491 mirrored;
-  the default full mesh, one cell across the channel, has 2748). Each
-  node's ``node_weight`` (2 off the plane, 1 on it) counts its mirror image wherever the whole
-  body is measured (centroids, best-fit rotations, load shares).
-* **Split**: linear tetrahedra lock in bending, and badly so when nearly incompressible
-  (Poisson 0.48). On the uniform-beam check (:func:`~gripper.calibration.reference_checks.beam_end_moment_check`,
-  default counts) the six-tetrahedron Kuhn split reaches 0.53 of the closed-form curvature, the
-  24-tetrahedron centre split 0.96, with 3.5x the nodes. A 12-tetrahedron split (centre node only)
-  reached 0.67. So ``centre24`` is the default; ``kuhn6`` stays for quick looks.
+A mapped mesh: each element a structured block of hexahedra whose columns lean with the cut
+faces (so the cut faces are exact planes), continuous bridges, a cable channel, every hexahedron
+split into linear tetrahedra (``centre24`` by default, against bending lock). Choices and
+their checks: ``docs/calibration.md``, "How the finger is meshed".
 
 Example:
     >>> from gripper.core.params import FingerGeometry

@@ -9,7 +9,7 @@ quasi-static mode holds each of ``n_points`` set-points until the finger is at r
 Example:
     >>> from gripper.experiments.bending import BendingConfig, run_bending_test
     >>> res = run_bending_test(BendingConfig(r_max=0.2))
-    >>> res.bending_angle_deg[-1] > 30
+    >>> bool(res.bending_angle_deg[-1] > 30)
     True
 """
 

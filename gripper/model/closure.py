@@ -1,61 +1,17 @@
 """The closed cut: how a hinge resists closing past the angle where its cut's faces meet.
 
-Past the closure angle the two silicone teeth on either side of a cut press on each other. The
-default model (``springs.closure = "teeth"``) gives each hinge, beyond its closure angle, the
-moment of those teeth squeezed as a neo-Hookean solid, computed from the finger's own geometry
-and modulus, and realises it with the hinge's MuJoCo joint limit.
-
-**The teeth.** An extra closure θ moves the cut's faces together by θ·s at height s above the
-hinge axis. The tooth material between two cuts, thickness t(z) = pitch - 2·(z - bridge)·
-tan(cut/2) at height z, is squeezed across its thickness; each hinge owns half of each
-neighbouring tooth, two halves in series of total thickness t, so the strain there is
-ε = θ·s/t. With the uniaxial nominal stress of an incompressible neo-Hookean solid of shear
-modulus μ = E/3, σ = μ·(λ⁻² - λ), λ = 1 - ε, the moment is
-
-    M(θ) = width · ∫ σ(θ·s/t(z)) · s dz,   z from the bridge top to the grasping face.
-
-For small θ it is K_c·θ with K_c = E·width·∫ s²/t dz (:func:`teeth_closure_stiffness`, 1.72
-N·m/rad for the default design, 16× the bridge's own spring, paper 000: 0.109 N·m/rad); it
-stiffens as the thin tips of the teeth (3.6 mm at the grasping face) are squashed: twice as
-stiff at 8°, five times at 11.2°, ten times at 11.9°. Left out: the faces' gradual contact
-from the grasping face down, and the tips bulging sideways; so it is good to a factor of about
-two. ``closure="stiffness"`` takes a measured linear stiffness instead.
-
-**As a MuJoCo limit.** A soft limit of time constant tau, damping ratio 1 and impedance d(r)
-(solimp: d rising from d0 to d1 over the violation ``width``) holds a static load as a spring
-of secant stiffness
-
-    K(r) = d(r)² / (d1² · (1 - d(r)) · tau² · A),
-
-``A`` the limit's inverse inertia (``dof_invweight0``): at rest the limit force f satisfies
-R·f = aref with R = (1-d)/d·A and aref = -k·d·r, k = 1/(d1·tau)² (MuJoCo's soft-constraint
-definitions; R is diagonal, so this holds whichever other limits are active). Each hinge's tau
-sets K at zero overrun to K_c; the impedance curve, the same for every hinge, follows the
-teeth's stiffening from d0 = 0.9995 to d1 = 0.9999 (MuJoCo's cap): a fivefold rise, fitted by
-least squares to M(θ)/θ (:func:`teeth_impedance`). Past ``width`` (11.2°) the stop stays at
-five times K_c, and at 12.4°, where the tips of the teeth are squashed flat
-(:func:`teeth_lock_angle`), a rigid stop (a fixed tendon's limit, as stiff as the step allows)
-takes over: without it, a random-command rollout of six 12-element fingers, whipped by the
-stage into their closed cuts at up to 100 rad/s, went unstable (MuJoCo BADQACC at 1.25 s). The
-stall's excess moment (about 0.49 N·m) is met at about 8.5°, inside the curve.
-
-d0 = 0.9995 is the rigid stop's impedance: with d0 = 0.999 (a tenfold rise) one balloon trial
-of fifty snapped (a fingertip jumped 14° within 40 ms, 377 N on the balloon) and three more
-burst; with 0.9995 no trial snapped, two burst mildly (strain 0.28 and 0.30, limit 0.25), and
-none once the extension stop was made rigid too. The extension stop is rigid, on the same
-tendon as the lock: the proximal hinges of a finger pressing a balloon sit on it. The
-compliant stop is a property of the silicone, not of the time step, and grasp outcomes no longer
-depend on the step (README, "Closed cuts and the time step"). The formula above is MuJoCo's for
-the integrators that size a limit with ``dof_invweight0`` (``implicitfast``, the bending test's);
-the trials' ``discrete`` integrator sizes it in its effective metric, so there each hinge's time
-constant is then matched to the design by static settles (:func:`match_discrete_closure`).
+The default model (``springs.closure = "teeth"``) gives each hinge, past its closure angle, the
+moment of the two silicone teeth either side of the cut squeezed as a neo-Hookean solid, from
+the finger's geometry and modulus, realised as the hinge's MuJoCo joint limit (its impedance
+curve and a per-hinge time constant), and matches it to the design under the trials'
+integrator. The derivation and its checks: ``docs/model.md``, "The closed cut".
 
 Example:
     >>> from gripper.core.params import GripperParams
     >>> from gripper.model.closure import teeth_closure_stiffness
     >>> p = GripperParams()
-    >>> round(teeth_closure_stiffness(p.finger, p.material), 2)
-    1.72
+    >>> round(teeth_closure_stiffness(p.finger, p.material), 2)   # N·m/rad, the 1.9 mm bridge
+    2.25
 """
 
 from __future__ import annotations

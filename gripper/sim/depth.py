@@ -1,41 +1,14 @@
 """A depth camera in the palm, and what the approach reads from its image: the support
-surface, the object's top height, footprint and centroid.
 
-The camera sits at the centre of the palm face and looks straight down (the palm frame's -z).
-It is modelled on a short-range active-stereo depth camera (an Intel RealSense D405 class
-module): each pixel's depth along the optical axis gets Gaussian noise of the stereo law
-
-    σ(z) = z² · subpixel / (focal_px · baseline)
-
-(the RMS depth error of a stereo camera whose disparity is matched to ``subpixel`` pixels RMS),
-a fraction ``dropout`` of pixels returns no depth, and nothing outside ``[min_range,
-max_range]`` is measured. Only a square region of interest of ``pixels`` × ``pixels`` rays
-around the optical axis is cast (the decimated centre of the camera's image).
-
-The rays are MuJoCo ray casts (``mj_multiRay`` on the geoms of group 0: the floor and the
-object; ``mj_rayFlex`` on each flex): the gripper's own fingers and palm are masked out, as a
-real pipeline masks its own known geometry. Noise is drawn from the trial's own generator.
-
-The estimate (:func:`estimate_object`) needs no knowledge of the object:
-
-- the **support** height is the median height of the points within ``object_threshold`` of
-  the lowest fifth's top (the object covers well under half of the region of interest for
-  everything the gripper can open around, so that fifth is the table); where nothing then
-  stands above the support (a part so wide that it fills more than four fifths of the view, as
-  a 110 mm box does at some yaws), the lowest 2 % are the table instead;
-- **object points** stand more than ``object_threshold`` above the support; of these, the
-  largest 8-connected patch of pixels is the object (a lone noisy floor pixel is not); fewer
-  than ``min_object_pixels`` of them is "no object seen" (:class:`NoObjectSeen`);
-- the **top** is the 98th percentile of the object points' heights (robust to single noisy
-  pixels);
-- the **footprint** is the convex hull of the object points seen from above; its area
-  centroid is the object's **centroid**, its farthest vertex from there the footprint's
-  **radius**, and its smallest enclosing rectangle (rotating calipers over the hull's edges)
-  gives the footprint's width, length and yaw.
+The camera, at the palm face's centre looking down, is modelled on a short-range active-stereo
+depth camera (a RealSense D405 class module): stereo depth noise σ(z) = z²·subpixel/(f·B),
+dropout, a 64 × 64 region of interest cast as MuJoCo rays. The estimate finds the support, the
+object's top, footprint and centroid. The model and the estimate, step by step:
+``docs/controller.md``, "The palm camera's model and estimate".
 
 Example:
     >>> from gripper.sim.depth import DepthCamera
-    >>> round(DepthCamera().depth_sigma(0.25) * 1e3, 2)   # mm of RMS depth error at 25 cm
+    >>> round(float(DepthCamera().depth_sigma(0.25)) * 1e3, 2)   # mm of RMS depth error at 25 cm
     0.62
 """
 
