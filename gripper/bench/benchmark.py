@@ -92,10 +92,9 @@ class BenchConfig(Validated):
         self.params.validate()
         self.protocol.validate()
         self.noise.validate()
-        if self.protocol.policy == "controller":
-            from gripper.experiments.controller import check_grip_tension
+        from gripper.experiments.controller import check_set_point
 
-            check_grip_tension(self.protocol.grip_tension, self.params.servo.max_cable_tension)
+        check_set_point(self.protocol, self.params)
         return self
 
     def identity(self) -> dict:

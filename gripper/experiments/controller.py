@@ -125,6 +125,14 @@ class GripController:
         self.released = True
 
 
+def check_set_point(protocol, params) -> None:
+    """The one check of a protocol's set-point against a design (the benchmark, the envelope and
+    every trial call it): with the controller, :func:`check_grip_tension` against the design's
+    servo; a per-object policy has no set-point."""
+    if protocol.policy == "controller":
+        check_grip_tension(protocol.grip_tension, params.servo.max_cable_tension)
+
+
 def check_grip_tension(grip_tension: float, max_tension: float) -> None:
     """Refuse a set-point the servo cannot reach: above its stall tension (stall torque / spool
     radius), or at or below the contact threshold (the controller could not tell contact from

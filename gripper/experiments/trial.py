@@ -31,7 +31,7 @@ from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
 from gripper.core.units import DEG
 from gripper.experiments.approach import ApproachPlan, fingertip_palm_z, plan_approach
-from gripper.experiments.controller import GripController, check_grip_tension
+from gripper.experiments.controller import GripController, check_set_point
 from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
 from gripper.experiments.record import TrialRecord
 from gripper.objects.grasp_object import GraspObject
@@ -158,8 +158,8 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
     travel = float(m.actuator_ctrlrange[probe.servo[0], 1])
     close_rate = proto.close_speed / p.servo.spool_radius  # rad/s of spool
     grip = None
+    check_set_point(proto, p)
     if proto.policy == "controller":
-        check_grip_tension(proto.grip_tension, p.servo.max_cable_tension)
         kp, _ = p.servo.datasheet.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
                                            damping_ratio=p.servo.damping_ratio)
         grip = GripController(m, probe.servo, sensor, grip_tension=proto.grip_tension, close_rate=close_rate,

@@ -94,11 +94,10 @@ class Envelope:
             raise fail("trials", f"must be an integer in [1, 1000], got {self.trials!r}")
         if isinstance(self.seed, bool) or not isinstance(self.seed, int):
             raise fail("seed", f"must be an integer, got {self.seed!r}")
-        from gripper.experiments.controller import check_grip_tension
+        from gripper.experiments.controller import check_set_point
 
         try:
-            self.protocol()
-            check_grip_tension(self.grip_tension, self.params.servo.max_cable_tension)
+            check_set_point(self.protocol(), self.params)
         except ValueError as e:
             raise fail("grip_tension", str(e).split(": ", 1)[-1]) from None
         return self
