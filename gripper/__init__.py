@@ -86,8 +86,8 @@ _EXPORTS = {
     "FitConfig": "gripper.calibration.fit",
     "fit_hinges": "gripper.calibration.fit",
     "calibrate": "gripper.calibration.pipeline",
-    "ReferenceConfig": "gripper.calibration.reference",
-    "run_reference": "gripper.calibration.reference",
+    "ReferenceConfig": "gripper.references.continuum",
+    "run_reference": "gripper.references.continuum",
 }
 __all__ = [*_EXPORTS, "__version__"]
 
@@ -96,7 +96,6 @@ if TYPE_CHECKING:  # static checkers and IDEs see the real names
     from gripper.calibration.calfile import Calibration, apply_calibration, design_hash
     from gripper.calibration.fit import FitConfig, fit_hinges
     from gripper.calibration.pipeline import calibrate
-    from gripper.calibration.reference import ReferenceConfig, run_reference
     from gripper.core.params import GripperParams
     from gripper.envs.grasp_env import SoftGripperGraspEnv
     from gripper.experiments.crush import crush_test
@@ -107,6 +106,7 @@ if TYPE_CHECKING:  # static checkers and IDEs see the real names
     from gripper.objects.grasp_object import GraspObject
     from gripper.objects.library import get_object, mesh_object
     from gripper.objects.scene_objects import Placement
+    from gripper.references.continuum import ReferenceConfig, run_reference
     from gripper.render.figures import bending_figure, success_plot
     from gripper.render.video import record_trial_video
     from gripper.servo.sensing import ServoSensing

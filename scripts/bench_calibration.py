@@ -18,10 +18,10 @@ from pathlib import Path
 
 from gripper.calibration.calfile import apply_calibration
 from gripper.calibration.fit import FitConfig, fit_hinges
-from gripper.calibration.fmbs import FmbsConfig
 from gripper.calibration.pipeline import calibrate
 from gripper.core.params import GripperParams
 from gripper.experiments.bending import BendingConfig, run_bending_test
+from gripper.references.fmbs import FmbsConfig
 
 KINDS = {"continuum": ("continuum", None),
          "fmbs_per_degree": ("fmbs", FmbsConfig(reading="per_degree")),

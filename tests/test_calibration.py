@@ -14,9 +14,9 @@ import pytest
 from gripper.calibration.calfile import Calibration, CalibrationMismatch, apply_calibration, design_hash
 from gripper.calibration.fit import FitConfig, HingeSimulator, fit_hinges, simulate_record
 from gripper.calibration.measured import angle_columns, read_measured_csv
-from gripper.calibration.mesh import MeshResolution, channel_side, finger_mesh
-from gripper.calibration.reference import BendingRecord, plateau_indices, tension_schedule
 from gripper.core.params import FingerGeometry, GripperParams
+from gripper.references.continuum import BendingRecord, plateau_indices, tension_schedule
+from gripper.references.finger_mesh import MeshResolution, channel_side, finger_mesh
 
 G = FingerGeometry()
 
@@ -60,7 +60,7 @@ def test_symmetric_reference_matches_the_full_body():
     body: element angles and tip after 40 steps under the cable agree within 1 % of the tip
     rotation. (The half has two cells across the channel's width where the full mesh has one,
     which alone changes the static bend by 0.2 %.)"""
-    from gripper.calibration.reference import ReferenceConfig, ReferenceFinger
+    from gripper.references.continuum import ReferenceConfig, ReferenceFinger
 
     out = []
     for mesh in (MeshResolution(), MeshResolution(symmetric=False)):
@@ -188,7 +188,7 @@ def test_reference_stops_when_a_cut_closes():
     """The reference has no contact between cut faces: a tension that closes a cut stops the run
     with a clear error naming the tension to stay below (instead of a calibration against faces
     passing through each other)."""
-    from gripper.calibration.reference import ReferenceConfig, run_reference
+    from gripper.references.continuum import ReferenceConfig, run_reference
 
     with pytest.raises(ValueError, match=r"reference.tension_max: at .* N hinge B\d-B\d is at .*°, past "
                                          r"the cut's closure angle " + CLOSURE):
@@ -279,7 +279,7 @@ def test_uniform_beam_end_moment_within_5_percent():
     """Issue acceptance: a uniform bar meshed the same way bends under an end moment within 5 %
     of the closed form (uniform curvature M/EI), measured on the neutral axis away from the
     clamp and the loaded face. The locking Kuhn split fails the same check."""
-    from gripper.calibration.reference_checks import beam_end_moment_check
+    from gripper.references.continuum_checks import beam_end_moment_check
 
     b = beam_end_moment_check(theta=1.0)
     assert b["max_speed"] < 1e-4  # at rest
@@ -294,7 +294,7 @@ def test_uniform_beam_end_moment_within_5_percent():
 def test_reference_short_run_bends_monotonically_and_stably():
     """A short reference run: straight at zero tension, element angles rising from base to tip,
     no MuJoCo warnings (the run raises SimulationUnstable otherwise)."""
-    from gripper.calibration.reference import ReferenceConfig, run_reference
+    from gripper.references.continuum import ReferenceConfig, run_reference
 
     rec = run_reference(config=ReferenceConfig(duration=0.3, n_levels=1, tension_max=0.1))
     assert np.abs(rec.element_angles_deg[0]).max() < 0.1

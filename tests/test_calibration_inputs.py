@@ -19,9 +19,9 @@ import pytest
 from gripper.calibration import pipeline
 from gripper.calibration.fit import FitConfig, bound_warnings, check_held_out, fit_hinges
 from gripper.calibration.measured import MAX_BENDING_DEG, angle_columns, read_measured_csv
-from gripper.calibration.reference import CLOSED_CUT_MARGIN_DEG, ReferenceConfig
 from gripper.core.params import GripperParams
 from gripper.core.resources import CALIBRATION_EXAMPLES_DIR
+from gripper.references.continuum import CLOSED_CUT_MARGIN_DEG, ReferenceConfig
 from gripper.servo.datasheet import servo_datasheet
 
 P = GripperParams()
@@ -196,7 +196,7 @@ def test_held_out_needs_enough_levels_left_for_a_tip_only_fit():
 def test_held_out_is_checked_before_the_reference_run(tmp_path, monkeypatch):
     """The levels are known from ReferenceConfig.n_levels: a bad --held-out stops at once,
     before the convergence study and the reference run (minutes)."""
-    import gripper.calibration.convergence as convergence
+    import gripper.references.convergence as convergence
 
     def never(*a, **k):
         raise AssertionError("the slow run started")
@@ -226,7 +226,7 @@ def test_quick_look_tension_keeps_the_cuts_open():
     mesh's small-load compliance: the average hinge turns half its closure angle (to the three
     significant figures of the tension), below the 0.25 N default of the 0.5.x design that
     closed the default design's cuts (the --no-converge failure)."""
-    from gripper.calibration.convergence import linear_compliance
+    from gripper.references.convergence import linear_compliance
 
     cfg = ReferenceConfig()
     t = pipeline.quick_tension_max(P, cfg)

@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from gripper.calibration.calfile import Calibration, CalibrationMismatch, apply_calibration, design_hash
-from gripper.calibration.convergence import linear_compliance, richardson
-from gripper.calibration.mesh import MeshResolution
 from gripper.calibration.pipeline import default_settings, settings_hash, stale_reasons
 from gripper.core.params import DEFAULT_CALIBRATION_FILE, GripperParams, HingeSprings
+from gripper.references.convergence import linear_compliance, richardson
+from gripper.references.finger_mesh import MeshResolution
 
 COMMITTED = Calibration.load(DEFAULT_CALIBRATION_FILE)
 
@@ -42,7 +42,7 @@ def test_a_design_change_makes_the_committed_calibration_stale():
 
 def test_a_reference_settings_change_makes_it_stale(monkeypatch):
     import gripper.calibration.pipeline as pipeline
-    from gripper.calibration.reference import ReferenceConfig
+    from gripper.references.continuum import ReferenceConfig
 
     monkeypatch.setattr(pipeline, "ReferenceConfig", lambda: ReferenceConfig(n_levels=4))
     assert any("settings" in r for r in stale_reasons(COMMITTED, GripperParams()))
@@ -78,7 +78,7 @@ def test_linear_solve_is_the_flex_at_small_load():
     """The convergence study's linear solve of the reference's discretisation agrees with
     MuJoCo's own relaxation of that mesh (coarse Kuhn mesh, for speed): at 0.01 N the flex's
     geometric nonlinearity is about 1 %."""
-    from gripper.calibration.reference_checks import static_bend
+    from gripper.references.continuum_checks import static_bend
 
     mesh = MeshResolution(split="kuhn6")
     lin = linear_compliance(None, mesh)["compliance_deg_per_N"]
@@ -104,7 +104,7 @@ def test_corrected_flex_has_the_extrapolated_compliance():
     2 % of the extrapolated compliance."""
     from dataclasses import replace
 
-    from gripper.calibration.reference_checks import static_bend
+    from gripper.references.continuum_checks import static_bend
 
     factor = COMMITTED.settings["run"]["modulus_factor"]
     f0 = COMMITTED.settings["convergence"]["extrapolated_compliance_deg_per_N"]
@@ -143,7 +143,7 @@ def test_fmbs_linear_solve_is_the_hinge_chain_closed_form():
     the lever being the cable's height above the hinge axis (straight cable, equal moment at
     every hinge). With the silicone's own modulus the elements change it by their small share
     (either way: B1's own bending is subtracted from the bending angle)."""
-    from gripper.calibration.fmbs import FmbsConfig
+    from gripper.references.fmbs import FmbsConfig
 
     p = GripperParams()
     g = p.finger
@@ -162,8 +162,8 @@ def test_fmbs_flex_at_rest_is_the_hinge_chain():
     """MuJoCo's flexible multibody finger at rest under a small load: every hinge at T·lever/K
     (its elements some 400x stiffer than the hinges). Before the cable's equivalent forces on
     the rigid zones' nodes were applied to the zones, the proximal hinge rested 11 % short."""
-    from gripper.calibration.fmbs import FmbsConfig, run_fmbs
-    from gripper.calibration.reference import ReferenceConfig
+    from gripper.references.continuum import ReferenceConfig
+    from gripper.references.fmbs import FmbsConfig, run_fmbs
 
     p = GripperParams()
     f = FmbsConfig(reading="per_degree")
@@ -179,7 +179,7 @@ def test_fmbs_flex_at_rest_is_the_hinge_chain():
 
 
 def test_fmbs_settings_refused_with_one_line():
-    from gripper.calibration.fmbs import FmbsConfig
+    from gripper.references.fmbs import FmbsConfig
 
     with pytest.raises(ValueError, match="fmbs.reading"):
         FmbsConfig(reading="per_turn").validate()
@@ -190,8 +190,8 @@ def test_fmbs_settings_refused_with_one_line():
 def test_paper_hinge_damping_freezes_the_finger():
     """Table 2's '10 N·m·s/deg' with its 1.9e-3 N·m/deg spring is a 5263 s relaxation time: the
     flexible multibody finger barely starts to bend in the paper's run (here its first 0.3 s)."""
-    from gripper.calibration.fmbs import FmbsConfig, run_fmbs
-    from gripper.calibration.reference import ReferenceConfig
+    from gripper.references.continuum import ReferenceConfig
+    from gripper.references.fmbs import FmbsConfig, run_fmbs
 
     cfg = ReferenceConfig(tension_max=1.0, n_levels=1, duration=0.3,
                           mesh=MeshResolution(split="kuhn6"))

@@ -11,7 +11,7 @@ bends by ``n·T·lever/K``. Hence the body's equivalent hinge stiffness
     K_eq(t) = n_hinges · lever / (d bending / dT),
 
 with the compliance from the mesh-converged reference
-(:func:`gripper.calibration.convergence.mesh_convergence`, Richardson-extrapolated).
+(:func:`gripper.references.convergence.mesh_convergence`, Richardson-extrapolated).
 :func:`bridge_for_stiffness` solves ``K_eq(t) = K`` by a secant iteration on log K against
 log t (a power law, so two or three steps suffice). A reading of K that needs a bridge the
 finger cannot hold (thicker than the room left under the 6 mm hole) is evidence against that
@@ -26,8 +26,8 @@ from __future__ import annotations
 
 import math
 
-from gripper.calibration.convergence import mesh_convergence
 from gripper.core.params import GripperParams
+from gripper.references.convergence import mesh_convergence
 
 
 def equivalent_stiffness(params: GripperParams | None = None, on_progress=None) -> dict:
@@ -51,7 +51,7 @@ MIN_WALL_UNDER_CHANNEL = 1.0e-3
 def max_bridge_thickness(params: GripperParams) -> float:
     """Thickest bridge the finger holds under its cable channel [m]: the channel's floor less
     ``MIN_WALL_UNDER_CHANNEL``."""
-    from gripper.calibration.mesh import channel_side
+    from gripper.references.finger_mesh import channel_side
 
     g = params.finger
     return g.hole_height - 0.5 * channel_side(g) - MIN_WALL_UNDER_CHANNEL

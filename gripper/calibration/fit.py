@@ -22,7 +22,7 @@ whereas here the residual is computed from derived quantities (angles summed alo
 
 Example:
     >>> from gripper.calibration.fit import fit_hinges
-    >>> from gripper.calibration.reference import run_reference
+    >>> from gripper.references.continuum import run_reference
     >>> fit = fit_hinges(run_reference())          # doctest: +SKIP
     >>> fit.stiffness                               # doctest: +SKIP
 """
@@ -41,11 +41,11 @@ import mujoco.rollout
 import numpy as np
 from mujoco import minimize
 
-from gripper.calibration.reference import BendingRecord
 from gripper.core.fields import Validated
 from gripper.core.params import GripperParams
 from gripper.model.builders import add_defaults, add_element_meshes, add_finger, set_options
 from gripper.model.names import FingerNames
+from gripper.references.continuum import BendingRecord
 
 # Static runs (the finger at rest at each static point's tension) use their own model: the
 # discrete integrator, implicit in the hinge springs, at a 0.05 s step, where each step acts
@@ -219,7 +219,7 @@ def build_hinge_finger(p: GripperParams, timestep: float, *, static: bool = Fals
                        ) -> tuple[mujoco.MjModel, FingerNames]:
     """One hinge finger in its own frame, its cable pulled by a tendon force (ctrl = tension).
 
-    Gravity is off, as in the reference (see :mod:`gripper.calibration.reference`). ``static``:
+    Gravity is off, as in the reference (see :mod:`gripper.references.continuum`). ``static``:
     the discrete integrator (implicit in the springs) for runs to rest, see ``STATIC_STEP``.
     """
     spec = mujoco.MjSpec()

@@ -39,7 +39,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gripper.calibration.reference import CLOSED_CUT_MARGIN_DEG, BendingRecord
+from gripper.references.continuum import CLOSED_CUT_MARGIN_DEG, BendingRecord
 
 # Largest element angle accepted when the caller gives no closure angle [deg]: a full turn, past
 # which the finger would pass through its own base. With the design's closure angle the limit is

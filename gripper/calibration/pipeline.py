@@ -3,11 +3,11 @@
 Reference kinds (``kind``):
 
 * ``"continuum"`` (default): the finger body as a MuJoCo flex
-  (:mod:`gripper.calibration.reference`). Its mesh convergence is solved first
-  (:func:`gripper.calibration.convergence.mesh_convergence`, about 3 minutes on 2 cores) and the
+  (:mod:`gripper.references.continuum`). Its mesh convergence is solved first
+  (:func:`gripper.references.convergence.mesh_convergence`, about 3 minutes on 2 cores) and the
   run uses the resulting stiffness correction, so the fit targets the extrapolated
   (mesh-converged) body, not the default mesh's 30 % too stiff one.
-* ``"fmbs"``: paper 000's flexible multibody model (:mod:`gripper.calibration.fmbs`), elements
+* ``"fmbs"``: paper 000's flexible multibody model (:mod:`gripper.references.fmbs`), elements
   as flexible bodies joined by hinges with Table 2's spring in either reading.
 
 The default design's committed calibration (``gripper/data/calibration/default/calibration.json``, whose
@@ -34,11 +34,11 @@ from typing import TYPE_CHECKING, Any
 from gripper.calibration.calfile import Calibration, design_hash
 from gripper.calibration.fit import FitConfig, FitResult, check_held_out, fit_hinges, min_fit_levels
 from gripper.calibration.measured import read_measured_csv
-from gripper.calibration.reference import BendingRecord, ReferenceConfig, run_reference
 from gripper.calibration.report import write_report
 from gripper.core.atomic import write_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import DEFAULT_CALIBRATION_FILE, GripperParams
+from gripper.references.continuum import BendingRecord, ReferenceConfig, run_reference
 
 REFERENCE_KINDS = ("continuum", "fmbs")
 # Files of a calibration folder that the committed default keeps (reference.json is the record
@@ -47,7 +47,7 @@ DEFAULT_FILES = ("calibration.json", "report.png", "errors.csv", "reference.json
                  "convergence.json")
 
 if TYPE_CHECKING:
-    from gripper.calibration.fmbs import FmbsConfig
+    from gripper.references.fmbs import FmbsConfig
 
 
 def settings_hash(settings: dict) -> str:
@@ -75,7 +75,7 @@ def quick_tension_max(p: GripperParams, cfg: ReferenceConfig) -> float:
     (``calibrate(converge=False)``, ``gripper calibrate --no-converge``) [N]: the same rule as
     :func:`auto_tension_max` (the average hinge at ``AUTO_CLOSURE_FRACTION`` of its closure
     angle), from the small-load compliance of the mesh the run uses, as it is (one linear solve,
-    about a second; :func:`gripper.calibration.convergence.linear_compliance`).
+    about a second; :func:`gripper.references.convergence.linear_compliance`).
 
     Why: ``ReferenceConfig.tension_max``'s 0.25 N was set for the 0.5.x design (3 mm bridge).
     The 1.9 mm default bends about 1000 deg/N on the default mesh, so at 0.25 N its hinges
@@ -83,7 +83,7 @@ def quick_tension_max(p: GripperParams, cfg: ReferenceConfig) -> float:
     at 45.9°) after some 95 s. The converged run gets its tension from the extrapolated
     compliance; the quick look now gets it from its own mesh's (0.107 N for the default
     design), so both bend the finger to the same fraction of closure."""
-    from gripper.calibration.convergence import linear_compliance
+    from gripper.references.convergence import linear_compliance
 
     comp = linear_compliance(p, cfg.mesh, clamp_length=cfg.clamp_length)["compliance_deg_per_N"]
     return _tension_for_compliance(p, comp / cfg.modulus_factor)
@@ -99,7 +99,7 @@ def default_settings(kind: str = "continuum", fmbs=None) -> dict:
     """The reference and fit settings ``calibrate`` uses when given none (its cache key)."""
     out = {"kind": kind, "reference": ReferenceConfig().to_dict(), "fit": asdict(FitConfig())}
     if kind == "fmbs":
-        from gripper.calibration.fmbs import FmbsConfig
+        from gripper.references.fmbs import FmbsConfig
 
         out["fmbs"] = (fmbs or FmbsConfig()).to_dict()
     return out
@@ -115,7 +115,7 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
 
     Args:
         kind: reference kind, ``"continuum"`` or ``"fmbs"`` (ignored with ``data``).
-        fmbs: :class:`~gripper.calibration.fmbs.FmbsConfig` for ``kind="fmbs"``.
+        fmbs: :class:`~gripper.references.fmbs.FmbsConfig` for ``kind="fmbs"``.
         converge: solve the continuum reference's mesh convergence first and run it with the
             stiffness correction (``False``: the mesh as it is, e.g. for quick looks). Without
             ``reference``, the continuum run's highest tension comes from the compliance the run
@@ -178,7 +178,7 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
             if data is None:
                 settings = {"kind": kind, "reference": ref_cfg.to_dict(), "fit": asdict(fit_cfg)}
                 if kind == "fmbs":
-                    from gripper.calibration.fmbs import FmbsConfig
+                    from gripper.references.fmbs import FmbsConfig
 
                     fmbs = fmbs or FmbsConfig()
                     settings["fmbs"] = fmbs.to_dict()
@@ -186,7 +186,7 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
                     fmbs = None
                 run_cfg = ref_cfg
                 if converge:
-                    from gripper.calibration.convergence import format_convergence, mesh_convergence
+                    from gripper.references.convergence import format_convergence, mesh_convergence
 
                     say(f"mesh convergence of the {kind} model (linear solves on 4 meshes) ...")
                     conv = mesh_convergence(p, ref_cfg.mesh, clamp_length=ref_cfg.clamp_length,
@@ -205,7 +205,7 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
                     # the mesh as it is: its own compliance sets the tension (quick_tension_max)
                     run_cfg = replace(run_cfg, tension_max=quick_tension_max(p, run_cfg))
                 if kind == "fmbs":
-                    from gripper.calibration.fmbs import fmbs_tension_max, run_fmbs
+                    from gripper.references.fmbs import fmbs_tension_max, run_fmbs
 
                     assert fmbs is not None  # defaulted above
                     if auto:

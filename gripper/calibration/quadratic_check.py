@@ -1,9 +1,9 @@
 """Independent check of the continuum reference: quadratic tetrahedra (scikit-fem on a gmsh mesh).
 
-The continuum reference (:mod:`gripper.calibration.reference`) is MuJoCo's flex of linear
+The continuum reference (:mod:`gripper.references.continuum`) is MuJoCo's flex of linear
 tetrahedra on a mapped mesh written here. This module solves the same body, clamp and small
 load with a second, independent discretisation: gmsh meshes the finger's solid (a box less the
-triangular cuts and the square cable channel, exactly as :mod:`gripper.calibration.mesh`
+triangular cuts and the square cable channel, exactly as :mod:`gripper.references.finger_mesh`
 describes it) into tetrahedra, and scikit-fem solves small-strain linear elasticity on them with
 quadratic (10-node, ``ElementTetP2``) shape functions, which do not lock in bending and lock far
 less than linear ones at Poisson's ratio 0.48.
@@ -35,9 +35,9 @@ import time
 
 import numpy as np
 
-from gripper.calibration.convergence import CHECK_TENSION, MEASURE_SCALE, solve_clamped
-from gripper.calibration.mesh import channel_side
 from gripper.core.params import GripperParams
+from gripper.references.convergence import CHECK_TENSION, MEASURE_SCALE, solve_clamped
+from gripper.references.finger_mesh import channel_side
 
 KNOT_BAND = 1.0e-3  # m: width of the traction band around the channel opening on the tip face
 

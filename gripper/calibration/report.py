@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from gripper.calibration.fit import FitResult
-from gripper.calibration.reference import BendingRecord
+from gripper.references.continuum import BendingRecord
 
 
 def error_table(record: BendingRecord, fit: FitResult) -> list[dict]:

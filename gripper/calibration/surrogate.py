@@ -8,7 +8,7 @@ equivalent hinge stiffness at the point to the default's,
     K(point) = K_cal · K_eq(point) / K_eq(default),
 
 with ``K_eq = n_hinges · lever / (d bending / dT)`` from a small-load linear solve of the
-reference's discretisation (:func:`gripper.calibration.convergence.linear_compliance`, about a
+reference's discretisation (:func:`gripper.references.convergence.linear_compliance`, about a
 second per design on the default mesh). The default mesh is 30 % too stiff in absolute terms
 (the notch singularity), but a ratio of two designs meshed alike carries little of that
 error; the committed surrogate's check points (full convergence studies at two corners of the
@@ -74,7 +74,7 @@ def _design(p: GripperParams, values: dict) -> GripperParams:
 
 def equivalent_stiffness_raw(p: GripperParams) -> float:
     """K_eq on the default mesh [N·m/rad] (no convergence correction: used as a ratio)."""
-    from gripper.calibration.convergence import linear_compliance
+    from gripper.references.convergence import linear_compliance
 
     g = p.finger
     comp = math.radians(linear_compliance(p)["compliance_deg_per_N"])
@@ -216,13 +216,13 @@ def correction_model(params: GripperParams | None = None,
                                                  {"finger.cut_angle_deg": 55.0}),
                      known: dict | None = None, on_progress=None) -> dict:
     """The default mesh's stiffness correction (``f_default / f_extrapolated`` of a full
-    convergence study, :func:`~gripper.calibration.convergence.mesh_convergence`) as a power
+    convergence study, :func:`~gripper.references.convergence.mesh_convergence`) as a power
     law of the bridge thickness, the dimension it depends on most (the cells along x stay
     2.3 mm while the singular apex's bridge thins), fitted through full studies at ``bridges``;
     ``checks`` are designs off that axis, reported with the law's error there.
     Each study takes about 3.5 minutes on one core; ``known`` maps bridge thicknesses already
     studied to their factors."""
-    from gripper.calibration.convergence import mesh_convergence
+    from gripper.references.convergence import mesh_convergence
 
     p = (params or GripperParams()).validate()
     say = on_progress or (lambda msg: None)

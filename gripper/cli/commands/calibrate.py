@@ -52,11 +52,11 @@ def add(sub) -> None:
 def run(args) -> int:
     from gripper.calibration.calfile import PAPER_STIFFNESS_NM_PER_DEG
     from gripper.calibration.fit import FitConfig
-    from gripper.calibration.fmbs import FmbsConfig
-    from gripper.calibration.mesh import MeshResolution
     from gripper.calibration.pipeline import calibrate, write_default_calibration
-    from gripper.calibration.reference import ReferenceConfig
     from gripper.calibration.report import error_table, format_table
+    from gripper.references.continuum import ReferenceConfig
+    from gripper.references.finger_mesh import MeshResolution
+    from gripper.references.fmbs import FmbsConfig
 
     if args.write_surrogate:
         from gripper.calibration.surrogate import StiffnessSurrogate, correction_model

@@ -6,7 +6,7 @@ Richardson extrapolation, a grid convergence index and the stiffness correction 
 mesh needs. Method and figures: ``docs/calibration.md``, "How convergence is measured".
 
 Example:
-    >>> from gripper.calibration.convergence import mesh_convergence
+    >>> from gripper.references.convergence import mesh_convergence
     >>> conv = mesh_convergence()                      # doctest: +SKIP
     >>> conv.stiffness_correction                      # doctest: +SKIP
 """
@@ -19,8 +19,8 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from gripper.calibration.mesh import MeshResolution, finger_mesh
 from gripper.core.params import GripperParams
+from gripper.references.finger_mesh import MeshResolution, finger_mesh
 
 CHECK_TENSION = 0.01  # N: the small check load (the solve is linear; results are per newton)
 DIRECT_SOLVE_MAX_DOFS = 60000  # reduced flexible multibody systems up to this size: sparse LU
@@ -74,11 +74,11 @@ def linear_compliance(params: GripperParams | None = None, mesh: MeshResolution 
     Args:
         clamp_length: length of B1 held by the mount [m] (``ReferenceConfig.clamp_length``).
         poisson_ratio: override the material's (to separate volumetric locking).
-        fmbs: a :class:`~gripper.calibration.fmbs.FmbsConfig` to solve paper 000's flexible
+        fmbs: a :class:`~gripper.references.fmbs.FmbsConfig` to solve paper 000's flexible
             multibody model instead of the continuum body: the elements' meshes with split
             bridges, the bridge zones and the knot zone rigid (each node's displacement a
             rigid motion of its zone, planar), each bridge's two zones pinned at the hinge axis
-            with the torsion spring on their relative rotation (:mod:`gripper.calibration.fmbs`).
+            with the torsion spring on their relative rotation (:mod:`gripper.references.fmbs`).
 
     Returns:
         dict with ``compliance_deg_per_N`` (bending B1 to B6 per newton of cable tension),
@@ -88,7 +88,7 @@ def linear_compliance(params: GripperParams | None = None, mesh: MeshResolution 
     import skfem
     from skfem.models.elasticity import lame_parameters, linear_elasticity
 
-    from gripper.calibration.reference import kabsch_angles
+    from gripper.references.continuum import kabsch_angles
 
     p = (params or GripperParams()).validate()
     g = p.finger
@@ -133,7 +133,7 @@ def _solve_fmbs(p: GripperParams, fm, K, f: np.ndarray, fixed: np.ndarray, basis
     pts = fm.points
     n = basis.N
     nd = basis.nodal_dofs  # (3, nodes)
-    from gripper.calibration.fmbs import rigid_zones
+    from gripper.references.fmbs import rigid_zones
 
     bodies = rigid_zones(p, fm, exclude=np.flatnonzero(fm.points[:, 0] <= clamp_length + 1e-9))
     in_body = np.zeros(len(pts), dtype=bool)
@@ -282,7 +282,7 @@ def mesh_convergence(params: GripperParams | None = None, mesh: MeshResolution |
     """Solve the reference's small-load bending on ``scales`` (the first the default) and
     extrapolate from the three finest (see the module docstring).
 
-    With ``fmbs`` (a :class:`~gripper.calibration.fmbs.FmbsConfig`) the flexible multibody
+    With ``fmbs`` (a :class:`~gripper.references.fmbs.FmbsConfig`) the flexible multibody
     model is solved instead. Its hinges' share of the compliance, ``n·lever/K``, is exact on
     every mesh, so the stiffness correction applies to the elements' share alone:
     ``(f_default - f_hinges) / (f_extrapolated - f_hinges)``.

@@ -4,7 +4,7 @@ bending; the default split keeps that small), and the static bend of the finger 
 (the mesh-convergence figure). Measured in ``scripts/bench_calibration.py``.
 
 Example:
-    >>> from gripper.calibration.reference_checks import beam_end_moment_check
+    >>> from gripper.references.continuum_checks import beam_end_moment_check
     >>> beam_end_moment_check(theta=1.0)["error"]   # doctest: +SKIP
 """
 
@@ -17,12 +17,12 @@ from dataclasses import replace
 import mujoco
 import numpy as np
 
-from gripper.calibration.mesh import MeshResolution
-from gripper.calibration.reference import (
+from gripper.core.params import GripperParams
+from gripper.references.continuum import (
     ReferenceConfig,
     ReferenceFinger,
 )
-from gripper.core.params import GripperParams
+from gripper.references.finger_mesh import MeshResolution
 from gripper.sim.stability import SimulationUnstable, check_stable
 
 

@@ -48,7 +48,7 @@ class MeshResolution(Validated):
             Default 3 (see the module docstring, "Grading").
         split_bridges: cut each bridge at its middle (the plane between two elements): the
             elements share no nodes and each has an interface face of its own there (paper
-            000's flexible multibody model, :mod:`gripper.calibration.fmbs`). Default False.
+            000's flexible multibody model, :mod:`gripper.references.fmbs`). Default False.
         split: tetrahedra per hexahedral cell: ``"centre24"`` (default: 24, around centre and
             face nodes; little locking), ``"centre12"`` (12, centre node only) or ``"kuhn6"``
             (6, no added nodes; locks, see the module docstring).

@@ -1,14 +1,14 @@
 """Flexible-multibody reference: the silicone finger as a MuJoCo 3D flex, bent by its cable.
 
-The body (cuts, bridges, cable channel) is meshed by :func:`gripper.calibration.mesh.finger_mesh`
+The body (cuts, bridges, cable channel) is meshed by :func:`gripper.references.finger_mesh.finger_mesh`
 from the same :class:`~gripper.core.params.FingerGeometry` as the hinge model and simulated as a
 ``flexcomp`` of linear tetrahedra with the silicone of paper 000 Tables 1-2, clamped at B1, loaded
 by a staircase of cable tensions (2 s at 5e-4 s, paper 000 §IV). How it is built (symmetry, the
 cable's equivalent forces, the load, mass and damping, gravity) and why: ``docs/calibration.md``,
-"How the reference is built". Its checks: :mod:`gripper.calibration.reference_checks`.
+"How the reference is built". Its checks: :mod:`gripper.references.continuum_checks`.
 
 Example:
-    >>> from gripper.calibration.reference import ReferenceConfig, run_reference
+    >>> from gripper.references.continuum import ReferenceConfig, run_reference
     >>> res = run_reference(config=ReferenceConfig(duration=0.1))   # doctest: +SKIP
     >>> res.element_angles_deg.shape[1]                              # doctest: +SKIP
     6
@@ -23,11 +23,11 @@ from dataclasses import asdict, dataclass, field
 import mujoco
 import numpy as np
 
-from gripper.calibration.mesh import FingerMesh, MeshResolution, finger_mesh
 from gripper.core.fields import Validated
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
 from gripper.model.builders import GUIDE_DEPTH
+from gripper.references.finger_mesh import FingerMesh, MeshResolution, finger_mesh
 from gripper.sim.stability import SimulationUnstable, check_stable
 
 PAPER_DURATION = 2.0  # s, paper 000 §IV
@@ -75,7 +75,7 @@ class ReferenceConfig(Validated):
         sample_every: record every k-th step [-].
         modulus_factor: factor on the silicone's Young's modulus that corrects the mesh's
             discretisation stiffness [-]: ``MeshConvergence.stiffness_correction`` from
-            :mod:`gripper.calibration.convergence`, so that this mesh has the extrapolated
+            :mod:`gripper.references.convergence`, so that this mesh has the extrapolated
             (converged) small-load compliance. 1 runs the mesh as it is. ``gripper
             calibrate`` sets it from a convergence study of the design.
     """
@@ -373,7 +373,7 @@ def run_reference(params: GripperParams | None = None,
 
 def run_bending_record(ref: ReferenceFinger) -> BendingRecord:
     """The tension staircase of ``ref.cfg`` on a built reference finger (the continuum body or
-    paper 000's flexible multibody model, :mod:`gripper.calibration.fmbs`); see
+    paper 000's flexible multibody model, :mod:`gripper.references.fmbs`); see
     :func:`run_reference` for what it raises."""
     closed_limit = math.radians(ref.p.finger.closure_angle_deg + CLOSED_CUT_MARGIN_DEG)
     cfg = ref.cfg

@@ -7,7 +7,7 @@ degree (as printed) or per radian. How it is built: ``docs/calibration.md``, "Pa
 flexible multibody model".
 
 Example:
-    >>> from gripper.calibration.fmbs import FmbsConfig, run_fmbs
+    >>> from gripper.references.fmbs import FmbsConfig, run_fmbs
     >>> rec = run_fmbs(fmbs=FmbsConfig(reading="per_radian"))   # doctest: +SKIP
 """
 
@@ -19,7 +19,6 @@ from dataclasses import asdict, dataclass, replace
 import mujoco
 import numpy as np
 
-from gripper.calibration.reference import BendingRecord, ReferenceConfig, ReferenceFinger, run_bending_record
 from gripper.core.fields import Validated
 from gripper.core.params import (
     DEG,
@@ -27,6 +26,7 @@ from gripper.core.params import (
     PAPER_HINGE_STIFFNESS_PER_RAD_READING,
     GripperParams,
 )
+from gripper.references.continuum import BendingRecord, ReferenceConfig, ReferenceFinger, run_bending_record
 
 READINGS = ("per_degree", "per_radian")
 PAPER_HINGE_DAMPING = 10.0  # paper 000 Table 2, "N·m·s/deg" as printed (implausible, see above)

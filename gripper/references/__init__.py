@@ -1,0 +1,10 @@
+"""The slow reference models that the fast hinge-chain gripper is calibrated or checked against,
+apart from the fitting code (:mod:`gripper.calibration`):
+
+- ``continuum``: the silicone finger as a MuJoCo 3D flex bent by its cable, with its mesh
+  (``finger_mesh``), its mesh-convergence study (``convergence``) and checks against closed forms
+  (``continuum_checks``);
+- ``fmbs``: paper 000's own flexible multibody model of the finger;
+- ``yeoh_tube``: the Yeoh thick-walled tube, exact and by FElupe, the first check of paper 001's
+  pneumatic actuator model.
+"""
