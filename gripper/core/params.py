@@ -156,6 +156,14 @@ class FingerGeometry(Validated):
                 f"({self.pitch:g} m)")
 
 
+# RTV 230 silicone's Yeoh coefficients C10, C20, C30 [Pa]: paper 001 §2.3 Step 2 ("C1 = 0.11596,
+# C2 = 0.0168, C3 = -0.000319", no unit given; MPa, the unit of the paper's other moduli, as Abaqus
+# in mm, N and MPa takes them). The one home of these numbers: the finger's material, paper 001's
+# actuator (gripper.references.pneumatic_params) and the tube check read them from here.
+RTV230_YEOH = (0.11596e6, 0.0168e6, -0.000319e6)
+RTV230_YEOH_SOURCE = "paper 001 §2.3 Step 2 (RTV 230): C1 = 0.11596, C2 = 0.0168, C3 = -0.000319 MPa"
+
+
 @dataclass(frozen=True)
 class Material(Validated):
     """Silicone of the finger body (paper 000 Tables 1-2, paper 001 §2.3).
@@ -179,9 +187,9 @@ class Material(Validated):
     shore_a: float = param(20.0, "Shore A", ge=0, le=100, source="paper 000 Table 1: 20 ± 2 A")
     tensile_strength: float = param(4.0e6, "Pa", gt=0, source="paper 000 Table 1: 4 MPa")
     elongation_at_break: float = param(5.0, "-", gt=0, source="paper 000 Table 1: >= 500 %")
-    yeoh_c10: float = param(0.11596e6, "Pa", source="paper 001 §2.3: 0.11596 MPa (RTV 230)")
-    yeoh_c20: float = param(0.0168e6, "Pa", source="paper 001 §2.3: 0.0168 MPa")
-    yeoh_c30: float = param(-0.000319e6, "Pa", source="paper 001 §2.3: -0.000319 MPa")
+    yeoh_c10: float = param(RTV230_YEOH[0], "Pa", source=RTV230_YEOH_SOURCE)
+    yeoh_c20: float = param(RTV230_YEOH[1], "Pa", source=RTV230_YEOH_SOURCE)
+    yeoh_c30: float = param(RTV230_YEOH[2], "Pa", source=RTV230_YEOH_SOURCE)
     friction: float = param(1.0, "-", gt=0,
                             source="assumed: soft silicone on dry plastic, paper, latex is 0.8-1.5")
 

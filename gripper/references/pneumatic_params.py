@@ -6,10 +6,10 @@ along its length, sealed at both ends; a fabric neutral layer under its flat fac
 stretch, so inflation bends the actuator towards it; a reinforcing fibre wound helically around
 body and cladding at a small twist angle, which stops the duct from ballooning; and a silicone
 cladding over it all. Clamped at one end, the other free; a follower pressure of 0-250 kPa on the
-duct's surfaces (§3, Step 3).
+duct's surfaces (§2.3, Step 3).
 
-The paper gives the materials (§3, Step 2), the five design parameters with their studied ranges
-and recommended values (§4, Table 1), the length and the neutral layer's segments (§4, Fig. 17).
+The paper gives the materials (§2.3, Step 2), the five design parameters with their studied ranges
+and recommended values (§2.4, Table 1), the length and the neutral layer's segments (§3, Fig. 17).
 Its figures with the cross-section's dimensions are lost; the duct's radius and the body's width
 are assumed here, once, with their reasons (``assumed:`` in each field's source).
 
@@ -26,6 +26,7 @@ import math
 from dataclasses import dataclass
 
 from gripper.core.fields import Validated, param
+from gripper.core.params import RTV230_YEOH, RTV230_YEOH_SOURCE
 
 KPA = 1e3  # Pa
 
@@ -33,44 +34,44 @@ KPA = 1e3  # Pa
 @dataclass(frozen=True)
 class PneumaticActuator(Validated):
     """One design of paper 001's actuator. Defaults: the design the paper recommends and built
-    (Table 1, §4), with the neutral layer in Fig. 17's three segments."""
+    (Table 1, §3), with the neutral layer in Fig. 17's three segments."""
 
     SECTION = "actuator"
 
     # geometry [m]
-    length: float = param(0.140, "m", gt=0, le=0.5, source="paper 001 §4: l = 140 mm")
+    length: float = param(0.140, "m", gt=0, le=0.5, source="paper 001 §2.4.1 and §3: l = 140 mm")
     duct_radius: float = param(
         0.006, "m", gt=0, le=0.03,
         source="assumed: a 12 mm wide half-round duct, the size of the fibre-reinforced bending actuators "
                "the paper builds on (its refs. 20, 21, Polygerinos et al.); its Fig. 4 dimensions are lost")
     main_body_thickness: float = param(0.002, "m", gt=0, le=0.01,
-                                       source="paper 001 Table 1: 2 mm (studied 0.5-3 mm)")
+                                       source="paper 001 §2.4.2, Table 1: 2 mm (studied 0.5-3 mm)")
     cladding_thickness: float = param(0.001, "m", ge=0, le=0.01,
-                                      source="paper 001 Table 1: 1 mm (studied 0-2.5 mm)")
+                                      source="paper 001 §2.4.2, Table 1: 1 mm (studied 0-2.5 mm)")
     neutral_thickness: float = param(0.0002, "m", gt=0, le=0.005,
-                                     source="paper 001 Table 1: 0.2 mm (studied 0.1-0.5 mm)")
+                                     source="paper 001 §2.4.2, Table 1: 0.2 mm (studied 0.1-0.5 mm)")
     fibre_diameter: float = param(0.0005, "m", gt=0, le=0.002,
-                                  source="paper 001 Table 1: 0.5 mm (studied 0.2-0.7 mm)")
+                                  source="paper 001 §2.4.2, Table 1: 0.5 mm (studied 0.2-0.7 mm)")
     twist_angle_deg: float = param(4.0, "deg", gt=0, lt=45,
-                                   source="paper 001 Table 1: 4° (studied 3-15°), from the hoop direction")
+                                   source="paper 001 §2.4.2, Table 1: 4° (studied 3-15°), from the hoop direction")
     # the neutral layer's segments along the length, from the clamped end (Fig. 17) [m]
     segment_lengths: tuple[float, ...] = param((0.040, 0.040, 0.040), "m", gt=0, numbers=True,
-                                               source="paper 001 §4, Fig. 17: a1 = a2 = a3 = 40 mm")
+                                               source="paper 001 §3, Fig. 17: a1 = a2 = a3 = 40 mm")
     segment_gaps: tuple[float, ...] = param((0.005, 0.015), "m", ge=0, numbers=True,
-                                            source="paper 001 §4, Fig. 17: b1 = 5 mm, b2 = 15 mm")
+                                            source="paper 001 §3, Fig. 17: b1 = 5 mm, b2 = 15 mm")
     # materials
-    yeoh_c10: float = param(0.11596e6, "Pa", gt=0, source="paper 001 §3 Step 2: C1 = 0.11596 MPa (RTV 230)")
-    yeoh_c20: float = param(0.0168e6, "Pa", source="paper 001 §3 Step 2: C2 = 0.0168 MPa")
-    yeoh_c30: float = param(-0.000319e6, "Pa", source="paper 001 §3 Step 2: C3 = -0.000319 MPa")
-    silicone_density: float = param(1140.0, "kg/m³", gt=0, source="paper 001 §3 Step 2: 1140 kg/m³")
-    fabric_modulus: float = param(6500e6, "Pa", gt=0, source="paper 001 §3 Step 2: 6500 MPa")
-    fabric_poisson: float = param(0.2, "-", gt=-1, lt=0.5, source="paper 001 §3 Step 2: 0.2")
-    fabric_density: float = param(750.0, "kg/m³", gt=0, source="paper 001 §3 Step 2: 750 kg/m³")
-    fibre_modulus: float = param(31076e6, "Pa", gt=0, source="paper 001 §3 Step 2: 31076 MPa")
-    fibre_poisson: float = param(0.36, "-", gt=-1, lt=0.5, source="paper 001 §3 Step 2: 0.36")
-    fibre_density: float = param(1201.0, "kg/m³", gt=0, source="paper 001 §3 Step 2: 1201 kg/m³")
+    yeoh_c10: float = param(RTV230_YEOH[0], "Pa", gt=0, source=RTV230_YEOH_SOURCE)
+    yeoh_c20: float = param(RTV230_YEOH[1], "Pa", source=RTV230_YEOH_SOURCE)
+    yeoh_c30: float = param(RTV230_YEOH[2], "Pa", source=RTV230_YEOH_SOURCE)
+    silicone_density: float = param(1140.0, "kg/m³", gt=0, source="paper 001 §2.3 Step 2: 1140 kg/m³")
+    fabric_modulus: float = param(6500e6, "Pa", gt=0, source="paper 001 §2.3 Step 2: 6500 MPa")
+    fabric_poisson: float = param(0.2, "-", gt=-1, lt=0.5, source="paper 001 §2.3 Step 2: 0.2")
+    fabric_density: float = param(750.0, "kg/m³", gt=0, source="paper 001 §2.3 Step 2: 750 kg/m³")
+    fibre_modulus: float = param(31076e6, "Pa", gt=0, source="paper 001 §2.3 Step 2: 31076 MPa")
+    fibre_poisson: float = param(0.36, "-", gt=-1, lt=0.5, source="paper 001 §2.3 Step 2: 0.36")
+    fibre_density: float = param(1201.0, "kg/m³", gt=0, source="paper 001 §2.3 Step 2: 1201 kg/m³")
     # load
-    pressure_max: float = param(250 * KPA, "Pa", gt=0, le=1e6, source="paper 001 §3 Step 3: 0-250 kPa")
+    pressure_max: float = param(250 * KPA, "Pa", gt=0, le=1e6, source="paper 001 §2.3 Step 3: 0-250 kPa")
 
     def check(self) -> None:
         if len(self.segment_gaps) != len(self.segment_lengths) - 1:
