@@ -8,7 +8,8 @@
 - ``<!-- depth-camera-table -->``: the palm depth camera's fields, likewise;
 - ``<!-- rl-hyperparams -->``: the RL baselines' hyper-parameters (``gripper.rl.hyperparams``);
 - ``<!-- version -->``: the package's version;
-- ``<!-- env-arguments -->``: the environment's arguments (``EnvConfig``'s fields and the rest).
+- ``<!-- env-arguments -->``: the environment's arguments (``EnvConfig``'s fields and the rest);
+- ``<!-- actuator-table -->``: paper 001's actuator's parameters (``PneumaticActuator``).
 
 The API pages' examples drop their ``# doctest: +SKIP`` markers (they keep the examples that
 run simulations out of a doctest run; a reader needs only the example).
@@ -100,6 +101,12 @@ def _env_arguments() -> str:
     return "\n".join(rows)
 
 
+def _actuator_table() -> str:
+    from gripper.references.pneumatic_params import PneumaticActuator
+
+    return _fields_table(((PneumaticActuator, "actuator"),))
+
+
 def _version() -> str:
     from importlib.metadata import version
 
@@ -107,7 +114,7 @@ def _version() -> str:
 
 
 MARKERS = {"<!-- rl-hyperparams -->": _rl_hyperparams, "<!-- version -->": _version,
-           "<!-- env-arguments -->": _env_arguments,
+           "<!-- env-arguments -->": _env_arguments, "<!-- actuator-table -->": _actuator_table,
            "<!-- cli-reference -->": _cli_reference, "<!-- trial-record-schema -->": _schema,
            "<!-- protocol-table -->": _protocol_table, "<!-- sensing-table -->": _sensing_table,
            "<!-- depth-camera-table -->": _depth_camera_table}
