@@ -17,6 +17,6 @@ fi
 # environment's own is imageio-ffmpeg's binary. Link it into .venv/bin, so an activated
 # environment reads and writes video with no system ffmpeg (`import gripper` also points
 # mediapy at it: gripper.render.backend).
-if [ ! -e .venv/bin/ffmpeg ]; then
-  ln -s "$(.venv/bin/python -c 'import imageio_ffmpeg; print(imageio_ffmpeg.get_ffmpeg_exe())')" .venv/bin/ffmpeg
+if [ ! -e .venv/bin/ffmpeg ]; then  # missing, or a link left dangling by an upgrade
+  ln -sf "$(.venv/bin/python -c 'import imageio_ffmpeg; print(imageio_ffmpeg.get_ffmpeg_exe())')" .venv/bin/ffmpeg
 fi
