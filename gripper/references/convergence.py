@@ -1,4 +1,5 @@
 """Mesh convergence of the continuum reference: Richardson extrapolation, grid convergence index
+and the stiffness correction the default mesh needs.
 
 The bending compliance at a small check load is one sparse linear solve on each mesh
 (scikit-fem on the reference's own tetrahedra), so meshes refined systematically give a

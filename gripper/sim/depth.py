@@ -1,4 +1,5 @@
 """A depth camera in the palm, and what the approach reads from its image: the support
+surface, the object's top height, footprint and centroid.
 
 The camera, at the palm face's centre looking down, is modelled on a short-range active-stereo
 depth camera (a RealSense D405 class module): stereo depth noise σ(z) = z²·subpixel/(f·B),

@@ -1,33 +1,10 @@
 """The gripper's capability envelope: which shapes, sizes, masses and frictions the grasp
 controller holds at one grip set-point.
 
-An envelope file (TOML; ``gripper envelope default`` runs the shipped one):
-
-```toml
-[envelope]
-shapes = ["sphere", "cylinder", "box"]
-sizes = [0.010, 0.020, 0.030, 0.045, 0.060, 0.075, 0.090, 0.110]  # width [m]: diameter or side
-masses = [0.05, 0.2, 0.5, 1.0, 2.0]                                 # [kg]
-frictions = [0.6]                                                   # silicone-object pair [-]
-trials = 3
-seed = 0
-grip_tension = 5.0                                                  # [N]; default: the protocol's
-```
-
-Every (shape, size, mass, friction) point is a rigid object: a sphere of that diameter, or an
-upright cylinder or square box of that width and :data:`ENVELOPE_HEIGHT` height (the library's
-block and cylinder height), never damaged. Each runs ``trials`` benchmark trials (the default
-protocol with ``policy = "controller"``, the default placement noise). Objects wider than the
-open fingers are allowed: the fingers then land on them, which the envelope is to show (mostly
-a failure; a wide box can be pinched by its top edges).
-
-Output folder: ``envelope.json`` (the spec and its hash; a rerun with another spec is refused),
-``trials.jsonl`` (one record per trial, resumable as the benchmark's), ``envelope.csv`` (tidy:
-one row per trial), ``summary.json`` and one ``map_<shape>.png`` per shape (success fraction over
-size × mass; ``map_<shape>_mu<friction>.png`` per shape and friction when several are swept).
-Derived figures, per shape and friction: a point is *held* when at least two thirds of its
-trials succeed; the **gripping range** is the smallest and the
-largest size held at the lightest mass, the **payload** the largest mass held at any size.
+An envelope file (TOML) gives shapes, widths, masses, frictions, trials, a seed and the grip
+set-point; every point is a set of trials on the benchmark's execution layer, and the summary
+gives each shape's gripping range and payload. The format and the derived figures:
+``docs/envelope.md``, "The envelope file".
 
 Example:
     >>> from gripper.studies.envelope import load_envelope
