@@ -22,12 +22,22 @@ BAD_PATH_ERRNOS = {errno.ENAMETOOLONG, errno.ENOENT, errno.ENOTDIR, errno.EISDIR
                    errno.EROFS, errno.EINVAL, errno.ELOOP, errno.EEXIST}
 
 
-def _version_text() -> str:
-    from importlib.metadata import version
+class _Version(argparse.Action):
+    """``--version``: the package's and MuJoCo's versions, looked up only when asked for (argparse's
+    own version action takes the text when the parser is built, which would import MuJoCo for
+    every command's ``--help``)."""
 
-    import mujoco
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS,
+                 help="show the package's and MuJoCo's versions and exit"):
+        super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
 
-    return f"gripper {version('gripper')} (MuJoCo {mujoco.__version__})"
+    def __call__(self, parser, namespace, values, option_string=None):
+        from importlib.metadata import version
+
+        import mujoco
+
+        print(f"gripper {version('gripper')} (MuJoCo {mujoco.__version__})")
+        parser.exit()
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -35,7 +45,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="gripper",
         description="Simulate a four-finger cable-driven soft gripper in MuJoCo. "
                     "All quantities in SI units unless a name says otherwise.")
-    parser.add_argument("--version", action="version", version=_version_text())
+    parser.add_argument("--version", action=_Version)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND",
                                 title="commands (gripper COMMAND --help for each)")
     for name in COMMANDS:

@@ -107,11 +107,13 @@ def with_protocol(p):
                    help="sensed approach: do not centre the palm over the sensed object")
     return p
 
+
 def with_runner(p):
     number(p, "--workers", int, lo=1, hi=WORKERS_MAX, default=DEFAULT_WORKERS, help="local worker processes")
     p.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     return p
+
 
 def with_params(p):
     p.add_argument("--params", metavar="FILE",

@@ -21,7 +21,6 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.envs.config import (
     CONTACT_FORCE,
     HELD,
@@ -43,7 +42,7 @@ from gripper.objects.scene_objects import Placement
 from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.damage import running_damage_measure
 from gripper.sim.probes import STRAIN_DAMAGE_KINDS, ObjectProbe
-from gripper.sim.scene import build_grasp_scene
+from gripper.sim.scene import build_grasp_scene, trial_params
 from gripper.sim.stepping import STATE_SPEC
 
 CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
@@ -73,7 +72,7 @@ class Scene:
     """One compiled scene (gripper + one object) and the indices the environment reads."""
 
     def __init__(self, cfg: EnvConfig, obj: GraspObject, place: Placement):
-        p = cfg.params.replace(sim=cfg.params.sim.replace(timestep=TRIAL_TIMESTEP))
+        p = trial_params(cfg.params)
         self.cfg, self.obj, self.params = cfg, obj, p
         self.model = build_grasp_scene(p, obj, place)
         m = self.model

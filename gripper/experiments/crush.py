@@ -36,6 +36,7 @@ from gripper.objects.scene_objects import Placement, add_object
 from gripper.sim.canonical import apply_canonical_constants
 from gripper.sim.damage import damage_measure
 from gripper.sim.probes import ObjectProbe, geom_normal_force
+from gripper.sim.scene import trial_params
 from gripper.sim.stability import check_stable
 
 # Gap between the plate and the object's top at the start [m]: clears the 1 mm drop gap.
@@ -67,7 +68,7 @@ def crush_test(obj: str | GraspObject, depth: float, *, speed: float = CRUSH_SPE
     if not (isinstance(hold_s, int | float) and math.isfinite(hold_s) and 0.0 <= hold_s <= 10.0):
         raise ValueError(f"crush.hold_s: must be in [0, 10] s, got {hold_s!r}")
     p = (params or GripperParams()).validate()
-    p = p.replace(sim=p.sim.replace(timestep=TRIAL_TIMESTEP)).validate()
+    p = trial_params(p).validate()
     spec = build_scene_spec(p, with_object=False)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
     add_object(spec, obj, Placement())

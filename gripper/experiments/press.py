@@ -19,12 +19,12 @@ import dataclasses
 import mujoco
 
 from gripper.core.params import GripperParams
-from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.model.builders import build_scene_spec
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement, add_object
 from gripper.sim.damage import permanent_dent
 from gripper.sim.probes import ObjectProbe, geom_normal_force
+from gripper.sim.scene import trial_params
 
 PRESS_RADIUS = 0.007  # m: about a finger pad's curvature across its width
 PRESS_SPEED = 0.02  # m/s: a slow, quasi-static press (the 2 mm gap closes in 0.1 s)
@@ -44,7 +44,7 @@ def face_press(points: tuple[int, int, int], depth: float) -> dict:
     nx, ny, nz = points
     obj = dataclasses.replace(get_object("paper_box"), mesh_points=(nx, ny, nz)).validate()
     p = GripperParams()
-    p = p.replace(sim=p.sim.replace(timestep=TRIAL_TIMESTEP))
+    p = trial_params(p)
     spec = build_scene_spec(p, with_object=False)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
     add_object(spec, obj, Placement())

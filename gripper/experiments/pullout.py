@@ -14,7 +14,7 @@ from gripper.objects.grasp_object import GraspObject
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement
 from gripper.sim.probes import ObjectProbe, PeakRecorder
-from gripper.sim.scene import build_grasp_scene
+from gripper.sim.scene import build_grasp_scene, trial_params
 from gripper.sim.stability import check_stable
 
 
@@ -33,7 +33,7 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     obj = get_object(obj) if isinstance(obj, str) else obj.validate()
     proto = (protocol or GraspProtocol()).validate()
     p = (params or GripperParams()).validate()
-    p = p.replace(sim=p.sim.replace(timestep=proto.timestep)).validate()
+    p = trial_params(p, proto.timestep).validate()
     for name, v in (("rate", rate), ("max_force", max_force), ("slip", slip)):
         if not (math.isfinite(v) and v > 0):
             raise ValueError(f"pullout.{name}: must be > 0, got {v!r}")

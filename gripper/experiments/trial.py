@@ -41,7 +41,7 @@ from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.damage import damage_measure
 from gripper.sim.depth import DepthCamera, NoObjectSeen, estimate_object, palm_depth_points
 from gripper.sim.probes import ObjectProbe, PeakRecorder
-from gripper.sim.scene import build_grasp_scene
+from gripper.sim.scene import build_grasp_scene, trial_params
 from gripper.sim.stability import SimulationUnstable
 from gripper.sim.stepping import ChunkStepper, run_phase
 
@@ -84,7 +84,7 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
     obj = get_object(obj) if isinstance(obj, str) else obj.validate()
     proto = (protocol or GraspProtocol()).validate()
     p = (params or GripperParams()).validate()
-    p = p.replace(sim=p.sim.replace(timestep=proto.timestep)).validate()
+    p = trial_params(p, proto.timestep).validate()
     noise = (noise or TrialNoise()).validate()
     sensing = (sensing or ServoSensing()).validate()
     camera = (camera or DepthCamera()).validate()

@@ -1,18 +1,8 @@
-"""Grasp objects: a latex balloon, a rigid block and cylinder, a card box, a plastic bag, user meshes.
-
-Every object is sized to the default gripper's aperture: with straight fingers the grasping
-faces stand 40 mm from the palm axis (palm radius), and trials offset the object by up to
-±10 mm, so every object's horizontal half-extent (its half-diagonal where yaw is sampled) stays
-at or below 28 mm. Heights stay below 70 mm so the palm clears the top with the fingertips
-8 mm above the floor (finger length 96 mm).
-
-Friction is the silicone–object pair coefficient. MuJoCo otherwise takes the larger of the
-two geoms' coefficients, so object geoms and flexes carry ``priority`` 1 and their value is
-the one used.
-
-Deformable objects are MuJoCo flexes and need the ``discrete`` integrator (MuJoCo 4 integrates
-flex elasticity only there, or with explicit Euler); grasp scenes use it for every object so
-that all objects share one integrator.
+"""Where grasp objects come from: the built-in library (a latex balloon, a rigid block and
+cylinder, a card box, a zipper storage bag; object files under ``gripper/data/objects``), a
+user's object files, and user meshes (``mesh:PATH``). What an object is:
+:mod:`gripper.objects.grasp_object`; how one is placed in a scene:
+:mod:`gripper.objects.scene_objects`.
 
 Example:
     >>> from gripper.objects.library import get_object

@@ -56,7 +56,7 @@ class CrossSection:
     cell: float = GRID
 
     @cached_property
-    def _grid(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    def _grid(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         a = self.actuator
         r_duct, t, tc, tn = a.duct_radius, a.main_body_thickness, a.cladding_thickness, a.neutral_thickness
         r_body = r_duct + t
@@ -74,11 +74,11 @@ class CrossSection:
         neutral = (np.abs(y) < 0.5 * tn) & (np.abs(x) < r_body)
         outline = ((y < centre_y) & (np.abs(x) < r_body + tc) & (y >= y_min)) | (upper & (rho < r_body + tc))
         cladding = outline & ~body & ~duct & ~neutral
-        return y, body | cladding, duct, np.full_like(y, self.cell ** 2)
+        return y, body | cladding, duct
 
     @property
     def silicone_heights(self) -> np.ndarray:
-        y, silicone, _, _ = self._grid
+        y, silicone, _ = self._grid
         return y[silicone]
 
     @property
@@ -87,14 +87,14 @@ class CrossSection:
 
     @property
     def duct_area(self) -> float:
-        _, _, duct, area = self._grid
-        return float(area[duct].sum())
+        _, _, duct = self._grid
+        return float(duct.sum()) * self.cell_area
 
     @property
     def duct_first_moment(self) -> float:
         """∫ y dA over the duct [m³]: the pressure's lever."""
-        y, _, duct, area = self._grid
-        return float((y[duct] * area[duct]).sum())
+        y, _, duct = self._grid
+        return float(y[duct].sum()) * self.cell_area
 
     @property
     def second_moment(self) -> float:
