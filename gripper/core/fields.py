@@ -52,6 +52,7 @@ class FieldSpec:
     hi_open: bool = False
     choices: tuple[str, ...] = ()
     source: str = ""
+    allow_empty: bool = False
 
     def allowed(self) -> str:
         """The allowed values, as error messages and tables state them."""
@@ -80,8 +81,9 @@ class FieldSpec:
                 raise ValueError(f"{name}: must be one of {', '.join(self.choices)}, got {value!r}")
             return
         if self.kind == "numbers":
-            if not isinstance(value, tuple | list) or len(value) == 0:
-                raise ValueError(f"{name}: expected a non-empty list of numbers, got {value!r}")
+            if not isinstance(value, tuple | list) or (len(value) == 0 and not self.allow_empty):
+                kind = "a list" if self.allow_empty else "a non-empty list"
+                raise ValueError(f"{name}: expected {kind} of numbers, got {value!r}")
             for i, v in enumerate(value):
                 self._check_number(f"{name}[{i}]", v)
             return
@@ -109,9 +111,11 @@ class FieldSpec:
 
 def param(default: Any, unit: str, *, gt: float | None = None, ge: float | None = None,
           lt: float | None = None, le: float | None = None, integer: bool = False,
-          choices: tuple[str, ...] = (), numbers: bool = False, source: str = "") -> Any:
+          choices: tuple[str, ...] = (), numbers: bool = False, allow_empty: bool = False,
+          source: str = "") -> Any:
     """A dataclass field with its :class:`FieldSpec` (``gt``/``ge``: lower bound, exclusive or
-    inclusive; ``lt``/``le``: upper bound). A bool default makes a flag, ``choices`` a choice."""
+    inclusive; ``lt``/``le``: upper bound). A bool default makes a flag, ``choices`` a choice,
+    ``numbers`` a list of numbers (``allow_empty``: the list may be empty)."""
     if isinstance(default, bool):
         kind = "bool"
     elif choices:
@@ -122,7 +126,8 @@ def param(default: Any, unit: str, *, gt: float | None = None, ge: float | None 
         kind = "integer" if integer else "number"
     spec = FieldSpec(unit=unit, kind=kind, lo=gt if gt is not None else ge,
                      hi=lt if lt is not None else le, lo_open=gt is not None,
-                     hi_open=lt is not None, choices=tuple(choices), source=source)
+                     hi_open=lt is not None, choices=tuple(choices), source=source,
+                     allow_empty=allow_empty)
     return dataclasses.field(default=default, metadata={"spec": spec})
 
 

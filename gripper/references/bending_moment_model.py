@@ -20,15 +20,18 @@ Assumptions, each the paper's or Polygerinos's:
 Then P · A_duct · ȳ_duct = ∫ s(λ(y)) y dA over the silicone (main body and cladding, the
 reference cross-section, integrated on a fine grid) fixes κ at each pressure.
 
-The cross-section (y up from the neutral layer's mid-plane): the neutral layer's two halves
-around y = 0; above it the main body, a rectangle of the body's width and its wall thickness,
-then a half-round of outer radius a + t (a the duct radius) with the half-round duct inside,
-its flat side on the rectangle; the cladding around the body and the neutral layer. The fibre
-is left out of the axial balance (it runs nearly in the hoop direction).
+The cross-section is the finite-element model's (:class:`gripper.references.actuator_mesh.Geometry`,
+y up from the neutral layer's mid-plane): the neutral layer's two halves around y = 0; above it
+the main body, a rectangle of the body's width and its wall thickness, then a half-round of outer
+radius a + t (a the duct radius) with the half-round duct inside (its edges rounded), its flat
+side on the rectangle; the fibre layer (d thick) and the cladding around body and neutral layer.
+The fibre layer counts as silicone; the fibre itself is left out of the axial balance (it runs
+nearly in the hoop direction).
 
 Example:
     >>> from gripper.references.bending_moment_model import bending_angle_deg
-    >>> from gripper.references.pneumatic_params import PneumaticActuator
+    >>> from gripper.references.actuator_mesh import Geometry
+from gripper.references.pneumatic_params import PneumaticActuator
     >>> round(bending_angle_deg(PneumaticActuator(), 50e3), 1) > 0
     True
 """
@@ -42,6 +45,7 @@ from functools import cached_property
 import numpy as np
 from scipy.optimize import brentq
 
+from gripper.references.actuator_mesh import Geometry
 from gripper.references.pneumatic_params import PneumaticActuator
 
 GRID = 0.02e-3  # m: the cross-section's quadrature cell (0.02 mm; halving it moves θ < 0.1 %)
@@ -57,24 +61,18 @@ class CrossSection:
 
     @cached_property
     def _grid(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        a = self.actuator
-        r_duct, t, tc, tn = a.duct_radius, a.main_body_thickness, a.cladding_thickness, a.neutral_thickness
-        r_body = r_duct + t
-        half_width = r_body + tc
-        y_min, y_max = -0.5 * tn - tc, 0.5 * tn + t + r_body + tc
+        g = Geometry(self.actuator)
+        half_width = g.r_out
         xs = np.arange(-half_width + 0.5 * self.cell, half_width, self.cell)
-        ys = np.arange(y_min + 0.5 * self.cell, y_max, self.cell)
+        ys = np.arange(g.y_bottom + 0.5 * self.cell, g.y_centre + g.r_out, self.cell)
         x, y = np.meshgrid(xs, ys)
-        centre_y = 0.5 * tn + t  # the duct's flat side, the half-rounds' centre
-        rho = np.hypot(x, y - centre_y)
-        upper = y >= centre_y
-        duct = upper & (rho < r_duct)
-        body = ((y >= 0.5 * tn) & (y < centre_y) & (np.abs(x) < r_body)) | (upper & (rho < r_body))
-        body &= ~duct
-        neutral = (np.abs(y) < 0.5 * tn) & (np.abs(x) < r_body)
-        outline = ((y < centre_y) & (np.abs(x) < r_body + tc) & (y >= y_min)) | (upper & (rho < r_body + tc))
-        cladding = outline & ~body & ~duct & ~neutral
-        return y, body | cladding, duct
+        rho = np.hypot(x, y - g.y_centre)
+        upper = y >= g.y_centre
+        duct = upper & (rho < g.duct_radius_at(np.arctan2(y - g.y_centre, np.abs(x))))
+        neutral = (np.abs(y) < 0.5 * self.actuator.neutral_thickness) & (np.abs(x) < g.r_body)
+        outline = np.where(upper, rho < g.r_out, np.abs(x) < g.r_out)
+        silicone = outline & ~duct & ~neutral  # body, fibre layer (its matrix) and cladding
+        return y, silicone, duct
 
     @property
     def silicone_heights(self) -> np.ndarray:

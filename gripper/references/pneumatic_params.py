@@ -17,7 +17,7 @@ Example:
     >>> from gripper.references.pneumatic_params import PneumaticActuator
     >>> a = PneumaticActuator().validate()
     >>> round(a.fibre_pitch * 1e3, 2)   # mm between turns of the 4° helix
-    3.62
+    3.29
 """
 
 from __future__ import annotations
@@ -29,12 +29,15 @@ from gripper.core.fields import Validated, param
 from gripper.core.params import RTV230_YEOH, RTV230_YEOH_SOURCE
 
 KPA = 1e3  # Pa
+# The built actuator's neutral layer (paper 001 §3, Fig. 17): a1 = a2 = a3 = 40 mm, b1 = 5 mm, b2 = 15 mm
+FIG17_SEGMENTS = {"segment_lengths": (0.040, 0.040, 0.040), "segment_gaps": (0.005, 0.015)}
 
 
 @dataclass(frozen=True)
 class PneumaticActuator(Validated):
-    """One design of paper 001's actuator. Defaults: the design the paper recommends and built
-    (Table 1, §3), with the neutral layer in Fig. 17's three segments."""
+    """One design of paper 001's actuator. Defaults: the design the paper recommends (Table 1),
+    with one neutral layer along the length as in its case studies (``FIG17_SEGMENTS``: the
+    segmented layer of the actuator it built, §3)."""
 
     SECTION = "actuator"
 
@@ -54,11 +57,13 @@ class PneumaticActuator(Validated):
                                   source="paper 001 §2.4.2, Table 1: 0.5 mm (studied 0.2-0.7 mm)")
     twist_angle_deg: float = param(4.0, "deg", gt=0, lt=45,
                                    source="paper 001 §2.4.2, Table 1: 4° (studied 3-15°), from the hoop direction")
-    # the neutral layer's segments along the length, from the clamped end (Fig. 17) [m]
-    segment_lengths: tuple[float, ...] = param((0.040, 0.040, 0.040), "m", gt=0, numbers=True,
-                                               source="paper 001 §3, Fig. 17: a1 = a2 = a3 = 40 mm")
-    segment_gaps: tuple[float, ...] = param((0.005, 0.015), "m", ge=0, numbers=True,
-                                            source="paper 001 §3, Fig. 17: b1 = 5 mm, b2 = 15 mm")
+    # the neutral layer's segments along the length, from the clamped end [m]: one over the whole
+    # length, as in the case studies; FIG17_SEGMENTS holds the built actuator's three
+    segment_lengths: tuple[float, ...] = param((0.140,), "m", gt=0, numbers=True,
+                                               source="paper 001 §2.4.2: the case studies' 140 mm actuator, "
+                                                      "one neutral layer along it")
+    segment_gaps: tuple[float, ...] = param((), "m", ge=0, numbers=True, allow_empty=True,
+                                            source="paper 001 §2.4.2: none in the case studies")
     # materials
     yeoh_c10: float = param(RTV230_YEOH[0], "Pa", gt=0, source=RTV230_YEOH_SOURCE)
     yeoh_c20: float = param(RTV230_YEOH[1], "Pa", source=RTV230_YEOH_SOURCE)
@@ -96,9 +101,18 @@ class PneumaticActuator(Validated):
         return self.outer_radius + 0.5 * self.fibre_diameter
 
     @property
+    def winding_perimeter(self) -> float:
+        """Length of one turn of the fibre around body and neutral layer [m], along the thread's
+        centre line: the half-round (radius r + d/2), the two flat sides down past the neutral
+        layer, the rounded corners (radius d/2) and the flat bottom."""
+        d = self.fibre_diameter
+        return (math.pi * self.winding_radius + 2 * (self.main_body_thickness + self.neutral_thickness)
+                + math.pi * d / 2 + 2 * self.outer_radius)
+
+    @property
     def fibre_pitch(self) -> float:
-        """Axial distance between turns of the helix [m]: 2π r tan(twist angle)."""
-        return 2 * math.pi * self.winding_radius * math.tan(math.radians(self.twist_angle_deg))
+        """Axial distance between turns of the helix [m]: the winding's perimeter times tan(twist angle)."""
+        return self.winding_perimeter * math.tan(math.radians(self.twist_angle_deg))
 
     @property
     def neutral_span(self) -> float:

@@ -14,11 +14,15 @@ import numpy as np
 
 from gripper.core.atomic import write_atomic
 
+# The bending curves' abscissas: a cable finger's shortening rate, or an actuator's pressure
+CURVE_AXES = {"r": "cable shortening rate r [-]", "pressure_kPa": "pressure [kPa]"}
+
 
 def parameter_plots(series: dict[str, list[tuple[float, dict]]], names: list[str], out: Path, *, title: str,
                     connect: bool) -> list[Path]:
     """One PNG per varied parameter: each scalar response (``names``) against the parameter,
-    plus the bending curves of its points (paper 001 Figs. 12-16 style). ``series``: per
+    plus the bending curves of its points (against the cable's shortening or the actuator's
+    pressure: paper 001 Figs. 12-16 style). ``series``: per
     parameter, (value, point record) in value order; ``connect``: join the points (a
     one-at-a-time sweep) or scatter them."""
     import matplotlib
@@ -48,10 +52,12 @@ def parameter_plots(series: dict[str, list[tuple[float, dict]]], names: list[str
             ax.grid(alpha=0.3)
         if has_curve:
             ax = flat[n - 1]
+            x_key, x_label = next((k, lbl) for k, lbl in CURVE_AXES.items() if any(k in r["curves"] for _, r in pts))
             for v, r in pts:
                 if r["curves"]:
-                    ax.plot(r["curves"]["r"], r["curves"]["bending_angle_deg"], label=f"{v:g}")
-            ax.set_xlabel("cable shortening rate r [-]")
+                    ax.plot(r["curves"][x_key], r["curves"]["bending_angle_deg"], "o-" if connect else "-",
+                            ms=3, label=f"{v:g}")
+            ax.set_xlabel(x_label)
             ax.set_ylabel("bending angle [deg]")
             if len(pts) <= 12:
                 ax.legend(title=key, fontsize=7, title_fontsize=7)

@@ -17,8 +17,9 @@ from typing import Any
 
 from gripper.bench.defaults import DEFAULT_WORKERS
 from gripper.core.atomic import write_csv_atomic, write_text_atomic
+from gripper.experiments.actuator_responses import inflation_response
 from gripper.experiments.design_responses import measure_responses
-from gripper.studies.study_file import Study, apply_point, get_dotted, metric_names
+from gripper.studies.study_file import ActuatorDesign, Study, apply_point, get_dotted, metric_names
 
 
 def run_point(study: Study, index: int, changes: dict) -> dict:
@@ -30,7 +31,10 @@ def run_point(study: Study, index: int, changes: dict) -> dict:
         p, reasons = apply_point(study.base, changes)
         rec["calibrated"] = not reasons
         rec["calibration_note"] = "; ".join(reasons)
-        rec["metrics"], rec["curves"] = measure_responses(p, study.responses, study.seed)
+        if isinstance(p, ActuatorDesign):
+            rec["metrics"], rec["curves"] = inflation_response(p.actuator, study.responses["inflation"])
+        else:
+            rec["metrics"], rec["curves"] = measure_responses(p, study.responses, study.seed)
     except Exception as e:  # a failing point is recorded and the study goes on
         rec.update(status="error", error=f"{type(e).__name__}: {e}")
     rec["wall_time_s"] = time.perf_counter() - t0

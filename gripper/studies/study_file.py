@@ -24,14 +24,36 @@ from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import read_user_text
+from gripper.references.pneumatic_params import PneumaticActuator
 
 DESIGNS = ("one_at_a_time", "factorial", "latin_hypercube")
+MODELS = ("gripper", "actuator")  # the cable gripper (GripperParams) or paper 001's actuator
 RESPONSES: dict[str, dict[str, type]] = {
     "bending": {"r_max": float, "duration": float},
     "tension_for_angle": {"angle_deg": float},
     "blocked_force": {"r": float},
     "grasp": {"objects": list, "trials": int},
+    "inflation": {"pressure_max": float, "steps": int},
 }
+MODEL_RESPONSES = {"gripper": ("bending", "tension_for_angle", "blocked_force", "grasp"), "actuator": ("inflation",)}
+
+
+@dataclass(frozen=True)
+class ActuatorDesign:
+    """Paper 001's actuator as a study's base design: one section, ``actuator``, so a study
+    varies ``actuator.<field>`` of :class:`gripper.references.pneumatic_params.PneumaticActuator`."""
+
+    actuator: PneumaticActuator = field(default_factory=PneumaticActuator)
+
+    def to_dict(self) -> dict:
+        return {"actuator": dataclasses.asdict(self.actuator)}
+
+    def replace(self, **changes) -> ActuatorDesign:
+        return dataclasses.replace(self, **changes)
+
+    def validate(self) -> ActuatorDesign:
+        self.actuator.validate()
+        return self
 # Parameters whose change alters the finger's bending and so would void a calibration.
 CALIBRATION_SECTIONS = ("finger.", "material.", "springs.")
 BRIDGE_RULE = "hinge stiffness scaled by the bridge-beam rule k ∝ E·w·t³ (not fitted)"
@@ -47,7 +69,7 @@ class Study:
     """A parsed, validated study (see the module docstring for the file format)."""
 
     name: str
-    base: GripperParams
+    base: GripperParams | ActuatorDesign
     design: str
     vary: dict
     responses: dict
@@ -112,8 +134,19 @@ def _key_line(text: str, key: str) -> int:
     return next((i for i, line in enumerate(lines, 1) if header.match(line)), 0)
 
 
-def apply_point(base: GripperParams, changes: dict) -> tuple[GripperParams, list[str]]:
+def _replace_dotted(p, key: str, value):
+    section, _, name = key.partition(".")
+    sub = getattr(p, section)
+    if isinstance(getattr(sub, name), tuple) and not isinstance(value, tuple | list):
+        value = (value,)
+    return p.replace(**{section: dataclasses.replace(sub, **{name: tuple(value) if isinstance(value, list) else value})})
+
+
+def apply_point(base, changes: dict) -> tuple:
     """The design of one point, and the reasons it is not calibrated (empty: calibrated).
+
+    An actuator's point (:class:`ActuatorDesign`) is its base with the changes: nothing to
+    calibrate. A gripper's:
 
     A point that changes the finger's geometry within the committed stiffness surrogate's
     ranges (:mod:`gripper.calibration.surrogate`) gets the base springs times the surrogate's
@@ -122,11 +155,9 @@ def apply_point(base: GripperParams, changes: dict) -> tuple[GripperParams, list
     """
     p = base
     for key, value in changes.items():
-        section, _, name = key.partition(".")
-        sub = getattr(p, section)
-        if isinstance(getattr(sub, name), tuple):
-            value = (value,)
-        p = p.replace(**{section: dataclasses.replace(sub, **{name: value})})
+        p = _replace_dotted(p, key, value)
+    if isinstance(base, ActuatorDesign):
+        return p.validate(), []
     if "finger.n_segments" in changes and "finger.pitch" not in changes:
         length = base.finger.pitch * base.finger.n_segments
         p = p.replace(finger=dataclasses.replace(p.finger, pitch=length / p.finger.n_segments))
@@ -212,8 +243,8 @@ def load_study(path: str | Path) -> Study:
         return ValueError(f"study: {path}:{line}: {key}: {msg}")
 
     for section in data:
-        if section not in ("study", "vary", "responses", "objective"):
-            raise err(section, "unknown section; allowed: study, vary, responses, objective")
+        if section not in ("study", "fixed", "vary", "responses", "objective"):
+            raise err(section, "unknown section; allowed: study, fixed, vary, responses, objective")
         if not isinstance(data[section], dict):
             raise err(section, f"must be a table ([{section}]), got {data[section]!r}")
     if "study" not in data:
@@ -221,9 +252,9 @@ def load_study(path: str | Path) -> Study:
                          "(see the shipped one_at_a_time.toml)")
     st = data["study"]
     for k in st:
-        if k not in ("name", "base", "design", "points", "seed"):
-            raise err(k, "unknown key in [study]; allowed: name, base, design, points, seed")
-    for k in ("name", "base", "design"):
+        if k not in ("name", "model", "base", "design", "points", "seed"):
+            raise err(k, "unknown key in [study]; allowed: name, model, base, design, points, seed")
+    for k in ("name", "model", "base", "design"):
         if k in st and not isinstance(st[k], str):
             raise err(k, f"must be text, got {st[k]!r}")
     if "name" in st and (len(st["name"]) > 100 or not st["name"].isprintable()):
@@ -232,7 +263,12 @@ def load_study(path: str | Path) -> Study:
     design = st.get("design", "one_at_a_time")
     if design not in DESIGNS:
         raise err("design", f"must be one of {', '.join(DESIGNS)}, got {design!r}")
-    base = GripperParams()
+    model = st.get("model", "gripper")
+    if model not in MODELS:
+        raise err("model", f"must be one of {', '.join(MODELS)}, got {model!r}")
+    base: GripperParams | ActuatorDesign = ActuatorDesign() if model == "actuator" else GripperParams()
+    if st.get("base") and model == "actuator":
+        raise err("base", "an actuator study sets its base design in [fixed], not a parameter file")
     if st.get("base"):
         bpath = Path(st["base"])
         if not bpath.is_absolute():
@@ -247,6 +283,15 @@ def load_study(path: str | Path) -> Study:
         raise err("seed", f"must be an integer, got {seed!r}")
     if design == "latin_hypercube" and (not isinstance(points, int) or not 1 <= points <= 100_000):
         raise err("points", f"must be an integer in [1, 100000] for a latin_hypercube, got {points!r}")
+    for key, value in data.get("fixed", {}).items():
+        section, _, name = key.partition(".")
+        sub = getattr(base, section, None)
+        if sub is None or not dataclasses.is_dataclass(sub) or name not in {f.name for f in dataclasses.fields(sub)}:
+            raise err(key, f"unknown parameter in [fixed]; use a dotted path of the {model}'s parameters")
+        try:
+            base = _replace_dotted(base, key, value).validate()
+        except (ValueError, TypeError) as e:
+            raise err(key, str(e)) from None
     vary = data.get("vary", {})
     if not vary:
         raise err("vary", "give at least one parameter to vary")
@@ -254,7 +299,8 @@ def load_study(path: str | Path) -> Study:
         section, _, name = key.partition(".")
         sub = getattr(base, section, None)
         if sub is None or not dataclasses.is_dataclass(sub) or name not in {f.name for f in dataclasses.fields(sub)}:
-            raise err(key, "unknown parameter; use a dotted GripperParams path such as finger.cut_angle_deg")
+            example = "actuator.cladding_thickness" if model == "actuator" else "finger.cut_angle_deg"
+            raise err(key, f"unknown parameter; use a dotted {model} parameter path such as {example}")
         current = getattr(sub, name)
         want = int if isinstance(current, int) and not isinstance(current, bool) else (
             float if isinstance(current, float | tuple) else type(current))
@@ -275,10 +321,11 @@ def load_study(path: str | Path) -> Study:
         vary[key] = [want(v) for v in values] if design != "latin_hypercube" else {"min": values[0], "max": values[1]}
     responses = data.get("responses", {})
     if not responses:
-        raise err("responses", f"give at least one response; allowed: {', '.join(RESPONSES)}")
+        raise err("responses", f"give at least one response; allowed: {', '.join(MODEL_RESPONSES[model])}")
     for name, opts in responses.items():
-        if name not in RESPONSES:
-            raise err("responses." + name, f"unknown response; allowed: {', '.join(RESPONSES)}")
+        if name not in MODEL_RESPONSES[model]:
+            raise err("responses." + name, f"unknown response for a {model} study; allowed: "
+                                           f"{', '.join(MODEL_RESPONSES[model])}")
         if not isinstance(opts, dict):
             raise err("responses." + name, "must be a table, e.g. { r_max = 0.45 }")
         for k, v in opts.items():
@@ -338,6 +385,8 @@ def metric_names(responses: dict) -> list[str]:
         names += ["tension_for_angle_N"]
     if "blocked_force" in responses:
         names += ["blocked_tip_force_N"]
+    if "inflation" in responses:
+        names += ["bending_angle_at_max_deg", "bending_angle_at_half_deg"]
     if "grasp" in responses:
         from gripper.objects.library import get_object
 

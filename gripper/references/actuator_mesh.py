@@ -1,0 +1,343 @@
+"""The hexahedral mesh of paper 001's actuator (:mod:`gripper.references.pneumatic_params`): half
+the cross-section (the actuator is symmetric about its mid-plane x = 0) in structured quads,
+swept along the length into eight-node hexahedra, with each cell's material and each fibre
+cell's winding direction.
+
+The cross-section (x across, y up from the neutral layer's mid-plane, z along the length from
+the clamped end; half-rounds centred at y_c = t_n/2 + t):
+
+- the air duct, a half-disc of radius a above y_c (an O-grid: a square core and two wedges);
+- the main body around it: a half-ring a ≤ r ≤ a + t above y_c and a rectangle of the body's
+  width and thickness t below;
+- the neutral layer, thickness t_n, under the body, as wide as the body;
+- the fibre layer, thickness d (the fibre's diameter), wound around body and neutral layer;
+- the cladding, thickness t_c, around everything.
+
+The duct is open over the length except for a sealing cap of the body's wall thickness at each
+end (paper 001 §2.1: "sealed at both ends"; the cap's thickness is assumed: the moulded wall's).
+The fibre layer's and neutral layer's materials are in :mod:`gripper.references.fibre_materials`.
+
+Example:
+    >>> from gripper.references.actuator_mesh import MeshSize, actuator_mesh
+    >>> from gripper.references.pneumatic_params import PneumaticActuator
+    >>> m = actuator_mesh(PneumaticActuator(), MeshSize())
+    >>> m.points.shape[1], m.cells.shape[1]
+    (3, 8)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from gripper.core.fields import Validated, param
+from gripper.references.pneumatic_params import PneumaticActuator
+
+SILICONE, FIBRE, NEUTRAL = 0, 1, 2  # cell materials (the fibre and neutral cells are silicone too)
+# the twenty-node hexahedron's edges, in VTK's order of its mid-edge nodes
+HEX20_EDGES = np.array([(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
+                        (0, 4), (1, 5), (2, 6), (3, 7)])
+MERGE_DECIMALS = 10
+# m, the silicone that seals each end of the duct. Assumed: the paper (§2.1) says only "sealed at
+# both ends". A cap as thick as the 2 mm wall balloons like a membrane (its limit point ~100 kPa,
+# p ≈ 1.24 μ t / a for a neo-Hookean bubble; measured: this model stalled at 127 kPa with it), which
+# the built actuator, tested to 410 kPa (paper 001 Fig. 20), cannot have done; 5 mm is a moulded
+# plug's usual size (Polygerinos et al. 2015's end caps).
+CAP_THICKNESS = 0.005
+# m, radius of the duct's rounded edges where its arc meets its flat side. Assumed: the paper's
+# cross-section drawing is lost; a sharp 90° corner of the cavity is a re-entrant corner of the
+# silicone, where the strain is singular under pressure and no mesh converges (measured: the
+# finer the mesh, the lower the pressure at which Newton's method failed). A moulded duct's core
+# has rounded edges; 1 mm is half the wall.
+DUCT_FILLET = 0.001  # points closer than 1e-10 m are one point (the blocks share their edges exactly)
+
+
+@dataclass(frozen=True)
+class MeshSize(Validated):
+    """The mesh's resolution: cells along each part of the cross-section and the cells' length.
+    Defaults: the mesh the design studies use (its convergence: ``docs/pneumatic.md``)."""
+
+    SECTION = "mesh"
+
+    duct_cells: int = param(4, "-", ge=1, le=16, integer=True,
+                            source="cells along each half of the duct's quarter arc (8 over 90° by default)")
+    wall_cells: int = param(2, "-", ge=1, le=16, integer=True, source="cells through the main body's wall")
+    layer_cells: int = param(1, "-", ge=1, le=8, integer=True,
+                             source="cells through each thin layer (neutral, fibre, cladding)")
+    axial_length: float = param(0.0025, "m", gt=0, le=0.07,
+                                source="largest cell length along the actuator (paper 001 §2.3 Step 6: "
+                                       "Abaqus tetrahedra no larger than 7 mm)")
+
+    def refined(self, ratio: int) -> MeshSize:
+        """Every count times ``ratio`` and the cell length over it (a uniform refinement)."""
+        return MeshSize(self.duct_cells * ratio, self.wall_cells * ratio, self.layer_cells * ratio,
+                        self.axial_length / ratio)
+
+
+@dataclass(frozen=True)
+class ActuatorMesh:
+    """The swept mesh: ``points`` (n, 3) [m], ``cells`` (m, 8) hexahedra in VTK order, each cell's
+    ``material`` (SILICONE, FIBRE, NEUTRAL) and, for the fibre cells, ``hoop`` (m, 3): the unit
+    tangent of the winding's cross-section path (zero elsewhere)."""
+
+    points: np.ndarray
+    cells: np.ndarray
+    material: np.ndarray
+    hoop: np.ndarray
+    actuator: PneumaticActuator
+    size: MeshSize
+
+    @cached_property
+    def centroids(self) -> np.ndarray:
+        return self.points[self.cells].mean(axis=1)
+
+    def duct_surface_points(self, points: np.ndarray | None = None) -> np.ndarray:
+        """Mask of the points (default: the mesh's) on the duct's wall, flat side and caps (where
+        the pressure acts)."""
+        geo = Geometry(self.actuator)
+        x, y, z = (self.points if points is None else points).T
+        tol = 1e-9
+        # no points lie inside the open duct: every point of its closure is on its surface (the
+        # mid-edge nodes of the fillet's chords lie just inside it)
+        r = np.hypot(x, y - geo.y_centre)
+        in_closure = (r <= geo.duct_radius_at(np.arctan2(y - geo.y_centre, x)) + tol) & (y >= geo.y_centre - tol)
+        return in_closure & (z >= geo.cap - tol) & (z <= self.actuator.length - geo.cap + tol)
+
+    def quadratic(self) -> tuple[np.ndarray, np.ndarray]:
+        """The mesh as twenty-node hexahedra (VTK order): points (n', 3) with a node at the middle
+        of every edge, the ones on the round faces moved onto their circle, and cells (m, 20)."""
+        edges = self.cells[:, HEX20_EDGES]  # (m, 12, 2)
+        pairs = np.sort(edges.reshape(-1, 2), axis=1)
+        unique, inverse = np.unique(pairs, axis=0, return_inverse=True)
+        mid = self.points[unique].mean(axis=1)
+        g = Geometry(self.actuator)
+        ends = self.points[unique]  # (k, 2, 3)
+        rad = np.hypot(ends[:, :, 0], ends[:, :, 1] - g.y_centre)
+        rings = np.array([g.a, g.r_body, g.r_fibre, g.r_out])
+        on_ring = ((ends[:, :, 1] >= g.y_centre - 1e-12).all(axis=1) & np.isclose(rad[:, 0], rad[:, 1], atol=1e-12)
+                   & (np.abs(rad[:, :1] - rings[None, :]) < 1e-12).any(axis=1))
+        r_mid = np.hypot(mid[:, 0], mid[:, 1] - g.y_centre)
+        scale = np.where(on_ring, rad[:, 0] / np.where(r_mid > 0, r_mid, 1.0), 1.0)
+        mid[:, 0] *= scale
+        mid[:, 1] = g.y_centre + (mid[:, 1] - g.y_centre) * scale
+        cells = np.hstack([self.cells, len(self.points) + inverse.reshape(-1, 12)])
+        return np.vstack([self.points, mid]), cells
+
+    def tip_line(self) -> tuple[int, int]:
+        """The points at the free end's bottom and top on the mid-plane (x = 0): the material line
+        whose rotation is the bending angle."""
+        x, y, z = self.points.T
+        at_tip = np.flatnonzero(np.isclose(z, self.actuator.length) & np.isclose(x, 0.0))
+        return int(at_tip[np.argmin(y[at_tip])]), int(at_tip[np.argmax(y[at_tip])])
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """The cross-section's levels [m] (see the module docstring)."""
+
+    actuator: PneumaticActuator
+
+    @property
+    def a(self) -> float:
+        return self.actuator.duct_radius
+
+    @property
+    def r_body(self) -> float:
+        return self.actuator.outer_radius
+
+    @property
+    def r_fibre(self) -> float:
+        return self.r_body + self.actuator.fibre_diameter
+
+    @property
+    def r_out(self) -> float:
+        return self.r_fibre + self.actuator.cladding_thickness
+
+    @property
+    def y_neutral_bottom(self) -> float:
+        return -0.5 * self.actuator.neutral_thickness
+
+    @property
+    def y_neutral_top(self) -> float:
+        return 0.5 * self.actuator.neutral_thickness
+
+    @property
+    def y_centre(self) -> float:
+        return self.y_neutral_top + self.actuator.main_body_thickness
+
+    @property
+    def y_fibre_bottom(self) -> float:
+        return self.y_neutral_bottom - self.actuator.fibre_diameter
+
+    @property
+    def y_bottom(self) -> float:
+        return self.y_fibre_bottom - self.actuator.cladding_thickness
+
+    @property
+    def cap(self) -> float:
+        """Thickness of the silicone sealing each end of the duct [m] (``CAP_THICKNESS``)."""
+        return CAP_THICKNESS
+
+    @property
+    def fillet(self) -> float:
+        """Radius of the duct's two rounded edges, where its arc meets its flat side [m]."""
+        return min(DUCT_FILLET, 0.5 * self.a)
+
+    def duct_radius_at(self, theta: np.ndarray) -> np.ndarray:
+        """The duct wall's distance [m] from the half-rounds' centre along the direction θ from
+        the flat side (+x): a on the arc, less on the fillet (where the ray leaves the fillet's
+        circle, centred at (√((a-f)² - f²), f) with radius f: the circle lies inside the duct)."""
+        a, f = self.a, self.fillet
+        cx, cy = math.sqrt((a - f) ** 2 - f * f), f
+        theta = np.asarray(theta, dtype=float)
+        e_c = np.cos(theta) * cx + np.sin(theta) * cy
+        t = e_c + np.sqrt(np.maximum(e_c ** 2 - (cx * cx + cy * cy) + f * f, 0.0))
+        return np.where(theta < math.atan2(cy, cx), t, a)
+
+
+def _graded(lo: float, hi: float, n: int) -> np.ndarray:
+    return np.linspace(lo, hi, n + 1)
+
+
+def _levels(breaks: list[tuple[float, int]], start: float) -> np.ndarray:
+    """Node positions from ``start`` through each (end, cells) interval; empty intervals skipped."""
+    out = [np.array([start])]
+    lo = start
+    for hi, n in breaks:
+        if hi - lo > 1e-12:
+            out.append(_graded(lo, hi, n)[1:])
+            lo = hi
+    return np.concatenate(out)
+
+
+def _grid_quads(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The quads of a structured (ni, nj, 2) point grid: points flattened and cells (k, 4)."""
+    ni, nj = points.shape[:2]
+    idx = np.arange(ni * nj).reshape(ni, nj)
+    cells = np.stack([idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]], axis=-1).reshape(-1, 4)
+    return points.reshape(-1, 2), cells
+
+
+def cross_section(actuator: PneumaticActuator, size: MeshSize) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The half cross-section (x ≥ 0) as quads: points (n, 2), counter-clockwise cells (m, 4)
+    and which cells fill the duct (the O-grid's three blocks)."""
+    g = Geometry(actuator)
+    a, yc, nq = g.a, g.y_centre, size.duct_cells
+    n_duct = max(1, nq // 2)  # cells from the O-grid's core to the duct's wall
+    s = 0.5 * a  # the core square's side
+    lam = np.linspace(0.0, 1.0, n_duct + 1)[None, :, None]
+    blocks = []
+    u = np.linspace(0.0, 1.0, nq + 1)
+    core = np.stack(np.meshgrid(s * u, s * u, indexing="ij"), axis=-1)
+    blocks.append(core)
+    # wedge below 45°: from the core's right edge (x = s) out to the arc
+    theta = 0.25 * np.pi * u
+    inner = np.stack([np.full_like(u, s), s * u], axis=-1)[:, None, :]
+    outer = (g.duct_radius_at(theta)[:, None] * np.stack([np.cos(theta), np.sin(theta)], axis=-1))[:, None, :]
+    blocks.append(inner + lam * (outer - inner))
+    # wedge above 45°: from the core's top edge (y = s) out to the arc
+    theta = 0.5 * np.pi - 0.25 * np.pi * u
+    inner = np.stack([s * u, np.full_like(u, s)], axis=-1)[:, None, :]
+    outer = (g.duct_radius_at(theta)[:, None] * np.stack([np.cos(theta), np.sin(theta)], axis=-1))[:, None, :]
+    blocks.append(inner + lam * (outer - inner))
+    # the half-ring above y_c: body wall (from the duct's wall out to the body's round face),
+    # fibre layer, cladding
+    theta = np.linspace(0.0, 0.5 * np.pi, 2 * nq + 1)
+    r_duct = g.duct_radius_at(theta)[:, None]
+    wall = np.linspace(0.0, 1.0, size.wall_cells + 1)[None, :]
+    outer_radii = _levels([(g.r_fibre, size.layer_cells), (g.r_out, size.layer_cells)], g.r_body)[1:]
+    radii = np.hstack([r_duct + wall * (g.r_body - r_duct),
+                       np.broadcast_to(outer_radii, (len(theta), len(outer_radii)))])
+    ring = np.stack([radii * np.cos(theta)[:, None], radii * np.sin(theta)[:, None]], axis=-1)
+    blocks.append(ring)
+    # below y_c: a tensor grid whose x nodes continue the duct's flat side and the ring's radii
+    x_flat = float(r_duct[0, 0])  # where the flat side meets the fillet
+    xs = np.concatenate([s * u, np.linspace(s, x_flat, n_duct + 1)[1:], radii[0, 1:]])
+    ys = _levels([(g.y_fibre_bottom, size.layer_cells), (g.y_neutral_bottom, size.layer_cells),
+                  (g.y_neutral_top, size.layer_cells), (yc, size.wall_cells)], g.y_bottom) - yc
+    blocks.append(np.stack(np.meshgrid(xs, ys, indexing="ij"), axis=-1))
+    pts, cells, duct, offset = [], [], [], 0
+    for k, b in enumerate(blocks):
+        p, c = _grid_quads(b)
+        pts.append(p)
+        cells.append(c + offset)
+        duct.append(np.full(len(c), k < 3))  # the core and the two wedges
+        offset += len(p)
+    points = np.concatenate(pts) + np.array([0.0, yc])
+    cells = np.concatenate(cells)
+    keys = np.round(points, MERGE_DECIMALS)
+    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    points, cells = points[first], inverse.reshape(-1)[cells]
+    # orient every quad counter-clockwise (its signed area positive)
+    p = points[cells]
+    area = 0.5 * np.sum(p[:, :, 0] * np.roll(p[:, :, 1], -1, 1) - np.roll(p[:, :, 0], -1, 1) * p[:, :, 1], axis=1)
+    cells[area < 0] = cells[area < 0][:, ::-1]
+    return points, cells, np.concatenate(duct)
+
+
+def axial_levels(actuator: PneumaticActuator, size: MeshSize) -> np.ndarray:
+    """Node positions along the length [m]: every cap and neutral-segment end is a node, and no
+    cell is longer than ``size.axial_length``."""
+    g = Geometry(actuator)
+    ends = np.cumsum(np.ravel(list(zip(actuator.segment_lengths, (*actuator.segment_gaps, 0.0), strict=True))))
+    breaks = np.unique(np.round(np.r_[0.0, g.cap, ends[ends < actuator.length], actuator.length - g.cap,
+                                      actuator.length], 12))
+    return _levels([(hi, max(1, math.ceil((hi - lo) / size.axial_length - 1e-9)))
+                    for lo, hi in zip(breaks[:-1], breaks[1:], strict=True)], 0.0)
+
+
+def in_neutral_segment(actuator: PneumaticActuator, z: np.ndarray) -> np.ndarray:
+    """Whether each position z [m] along the length lies on one of the neutral layer's segments."""
+    inside = np.zeros_like(z, dtype=bool)
+    start = 0.0
+    for length, gap in zip(actuator.segment_lengths, (*actuator.segment_gaps, 0.0), strict=True):
+        inside |= (z >= start) & (z <= start + length)
+        start += length + gap
+    return inside
+
+
+def actuator_mesh(actuator: PneumaticActuator, size: MeshSize) -> ActuatorMesh:
+    """The actuator's hexahedral mesh (see the module docstring)."""
+    actuator, size = actuator.validate(), size.validate()
+    g = Geometry(actuator)
+    pts2, quads, duct_quads = cross_section(actuator, size)
+    zs = axial_levels(actuator, size)
+    n2, nz = len(pts2), len(zs)
+    points = np.column_stack([np.tile(pts2, (nz, 1)), np.repeat(zs, n2)])
+    layer = np.arange(nz - 1)[:, None, None] * n2
+    cells = np.concatenate([quads[None] + layer, quads[None] + layer + n2], axis=2).reshape(-1, 8)
+    centre = points[cells].mean(axis=1)
+    x, y, z = centre.T
+    tol = 1e-12
+    in_duct = np.tile(duct_quads, nz - 1) & (z > g.cap) & (z < actuator.length - g.cap)
+    keep = ~in_duct
+    cells, x, y, z = cells[keep], x[keep], y[keep], z[keep]
+    used = np.unique(cells)
+    renumber = np.full(len(points), -1)
+    renumber[used] = np.arange(len(used))
+    points, cells = points[used], renumber[cells]
+    above = y > g.y_centre
+    r = np.hypot(x, y - g.y_centre)
+    fibre = np.where(above, (r > g.r_body) & (r < g.r_fibre),
+                     (y > g.y_fibre_bottom) & (x < g.r_fibre) & ((x > g.r_body) | (y < g.y_neutral_bottom)))
+    neutral = (y > g.y_neutral_bottom) & (y < g.y_neutral_top) & (x < g.r_body) & in_neutral_segment(actuator, z)
+    material = np.full(len(cells), SILICONE)
+    material[fibre] = FIBRE
+    material[neutral] = NEUTRAL
+    # the winding's path around the cross-section: round over the top, down the side, across the bottom
+    hoop = np.zeros((len(cells), 3))
+    theta = np.arctan2(y - g.y_centre, x)
+    top = fibre & above
+    hoop[top, 0], hoop[top, 1] = -np.sin(theta[top]), np.cos(theta[top])
+    side = fibre & ~above & (x > g.r_body) & (y > g.y_neutral_bottom)
+    hoop[side, 1] = 1.0
+    bottom = fibre & ~above & (x < g.r_body) & (y < g.y_neutral_bottom)
+    hoop[bottom, 0] = 1.0
+    corner = fibre & ~above & (x > g.r_body) & (y < g.y_neutral_bottom)
+    dx, dy = x[corner] - g.r_body, y[corner] - g.y_neutral_bottom
+    norm = np.hypot(dx, dy) + tol
+    hoop[corner, 0], hoop[corner, 1] = -dy / norm, dx / norm
+    return ActuatorMesh(points=points, cells=cells, material=material, hoop=hoop, actuator=actuator, size=size)
