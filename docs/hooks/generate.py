@@ -9,7 +9,10 @@
 - ``<!-- rl-hyperparams -->``: the RL baselines' hyper-parameters (``gripper.rl.hyperparams``);
 - ``<!-- version -->``: the package's version;
 - ``<!-- env-arguments -->``: the environment's arguments (``EnvConfig``'s fields and the rest);
-- ``<!-- actuator-table -->``: paper 001's actuator's parameters (``PneumaticActuator``).
+- ``<!-- actuator-table -->``: paper 001's actuator's parameters (``PneumaticActuator``);
+- ``<!-- actuator-convergence -->``, ``<!-- actuator-check -->``, ``<!-- actuator-studies -->``: its
+  finite-element model's measurements, from ``gripper/data/actuator/reference_results.json``
+  (``scripts/actuator_reference.py`` regenerates it).
 
 The API pages' examples drop their ``# doctest: +SKIP`` markers (they keep the examples that
 run simulations out of a doctest run; a reader needs only the example).
@@ -107,6 +110,71 @@ def _actuator_table() -> str:
     return _fields_table(((PneumaticActuator, "actuator"),))
 
 
+def _actuator_results() -> dict:
+    from gripper.core.resources import DATA_DIR
+
+    path = DATA_DIR / "actuator" / "reference_results.json"
+    return json.loads(path.read_text()) if path.is_file() else {}
+
+
+def _actuator_convergence() -> str:
+    data = _actuator_results()
+    if "richardson" not in data:
+        return "*Not measured yet: run `scripts/actuator_reference.py convergence`.*"
+    rows = ["| refinement | cells | unknowns | bending at 250 kPa [deg] | sweep time [s] |", "|---|---|---|---|---|"]
+    for ratio, sw in sorted(data["sweeps"].items(), key=lambda kv: int(kv[0])):
+        rows.append(f"| {ratio} | {sw['cells']} | {sw['unknowns']} | {sw['angle_deg'][-1]:.2f} | {sw['wall_time_s']:.0f} |")
+    r = data["richardson"]
+    rows += ["", f"Observed order p = {r['order']:.2f}; extrapolated bending angle {r['extrapolated_deg']:.2f}°; "
+                 f"grid convergence index (safety factor 1.25) {100 * r['gci_fine']:.2f} % on the fine mesh and "
+                 f"**{100 * r['gci_studies_mesh']:.2f} % on the studies' mesh** (refinement {r['studies_refinement']}); "
+                 f"asymptotic-range ratio {r['asymptotic_ratio']:.3f} (1 in the asymptotic range)."]
+    return "\n".join(rows)
+
+
+def _actuator_check() -> str:
+    data = _actuator_results()
+    if "semi_analytical" not in data:
+        return "*Not measured yet: run `scripts/actuator_reference.py convergence`.*"
+    sa = data["semi_analytical"]
+    fe = data["sweeps"][str(data["richardson"]["studies_refinement"])]
+    head = "| pressure [kPa] | " + " | ".join(f"{p:g}" for p in sa["pressure_kPa"]) + " |"
+    rows = [head, "|---" * (len(sa["pressure_kPa"]) + 1) + "|",
+            "| finite elements [deg] | " + " | ".join(f"{a:.1f}" for a in fe["angle_deg"]) + " |",
+            "| semi-analytical [deg] | " + " | ".join(f"{a:.1f}" for a in sa["angle_deg"]) + " |",
+            "| FE / semi-analytical | - | " + " | ".join(f"{f / a:.2f}" for f, a in
+                                                        zip(fe["angle_deg"][1:], sa["angle_deg"][1:], strict=True)) + " |"]
+    return "\n".join(rows)
+
+
+def _actuator_studies() -> str:
+    data = _actuator_results()
+    if "studies" not in data:
+        return "*Not measured yet: run the five studies, then `scripts/actuator_reference.py studies runs/paper001_*`.*"
+    rows = ["| case study | value | bending at 125 kPa [deg] | bending at 250 kPa [deg] | sweep time [s] |",
+            "|---|---|---|---|---|"]
+    times = []
+    for case in data["studies"].values():
+        for pt in sorted(case["points"], key=lambda p: next(iter(p["changes"].values()), case["base_value"])):
+            value = next(iter(pt["changes"].values()), case["base_value"])
+            shown = f"{value:g}°" if case["key"].endswith("_deg") else f"{value * 1e3:g} mm"
+            base = "" if pt["changes"] else " (base)"
+            if pt["status"] != "ok":
+                rows.append(f"| {case['name']} | {shown}{base} | failed: {pt['error']} | | {pt['wall_time_s']:.0f} |")
+                continue
+            angles = pt["curve"]["bending_angle_deg"]
+            rows.append(f"| {case['name']} | {shown}{base} | {angles[len(angles) // 2]:.1f} | {angles[-1]:.1f} | "
+                        f"{pt['wall_time_s']:.0f} |")
+            times.append(pt["wall_time_s"])
+    if times:
+        import statistics
+
+        rows += ["", f"Per-design time (one full 0-250 kPa sweep, two worker processes on 2 cores): median "
+                     f"**{statistics.median(times):.0f} s** over {len(times)} designs, "
+                     f"range {min(times):.0f}-{max(times):.0f} s."]
+    return "\n".join(rows)
+
+
 def _version() -> str:
     from importlib.metadata import version
 
@@ -117,7 +185,9 @@ MARKERS = {"<!-- rl-hyperparams -->": _rl_hyperparams, "<!-- version -->": _vers
            "<!-- env-arguments -->": _env_arguments, "<!-- actuator-table -->": _actuator_table,
            "<!-- cli-reference -->": _cli_reference, "<!-- trial-record-schema -->": _schema,
            "<!-- protocol-table -->": _protocol_table, "<!-- sensing-table -->": _sensing_table,
-           "<!-- depth-camera-table -->": _depth_camera_table}
+           "<!-- depth-camera-table -->": _depth_camera_table,
+           "<!-- actuator-convergence -->": _actuator_convergence, "<!-- actuator-check -->": _actuator_check,
+           "<!-- actuator-studies -->": _actuator_studies}
 
 
 def on_page_markdown(markdown: str, **kwargs) -> str:

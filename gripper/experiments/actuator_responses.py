@@ -17,13 +17,14 @@ from gripper.references.actuator_mesh import MeshSize
 from gripper.references.pneumatic_params import PneumaticActuator
 
 INFLATION_STEPS = 10  # pressures recorded between 0 and pressure_max (the paper's 25 kPa apart)
+STUDY_REFINEMENT = 2  # the mesh (MeshSize.at_refinement): its convergence in docs/pneumatic.md
 
 
-def inflation_response(actuator: PneumaticActuator, opts: dict, size: MeshSize | None = None
-                       ) -> tuple[dict, dict]:
+def inflation_response(actuator: PneumaticActuator, opts: dict) -> tuple[dict, dict]:
     """Metrics (the bending angle at ``pressure_max`` and at half of it [deg]) and the curve
     (pressure [kPa], bending angle [deg]) of one sweep from 0 to ``opts["pressure_max"]`` [Pa]
-    (default: the actuator's, 250 kPa) in ``opts["steps"]`` equal steps.
+    (default: the actuator's, 250 kPa) in ``opts["steps"]`` equal steps, on the mesh of
+    ``opts["refinement"]`` (default ``STUDY_REFINEMENT``).
 
     Raises:
         RuntimeError: the sweep stopped before ``pressure_max`` (a limit point, or Newton's
@@ -32,7 +33,7 @@ def inflation_response(actuator: PneumaticActuator, opts: dict, size: MeshSize |
     p_max = float(opts.get("pressure_max", actuator.pressure_max))
     steps = int(opts.get("steps", INFLATION_STEPS))
     pressures = np.linspace(0.0, p_max, steps + 1)
-    result = inflate(actuator, pressures, size)
+    result = inflate(actuator, pressures, MeshSize.at_refinement(int(opts.get("refinement", STUDY_REFINEMENT))))
     if result.failed_at is not None:
         raise RuntimeError(f"the sweep stopped at {result.failed_at / 1e3:.4g} kPa of {p_max / 1e3:g} kPa "
                            "(Newton's method did not converge there: a limit point or an unstable model)")

@@ -58,23 +58,27 @@ DUCT_FILLET = 0.001  # points closer than 1e-10 m are one point (the blocks shar
 @dataclass(frozen=True)
 class MeshSize(Validated):
     """The mesh's resolution: cells along each part of the cross-section and the cells' length.
-    Defaults: the mesh the design studies use (its convergence: ``docs/pneumatic.md``)."""
+    Defaults: the mesh the design studies use, refinement 2 of :meth:`at_refinement` (its
+    convergence: ``docs/pneumatic.md``)."""
 
     SECTION = "mesh"
 
-    duct_cells: int = param(4, "-", ge=1, le=16, integer=True,
-                            source="cells along each half of the duct's quarter arc (8 over 90° by default)")
+    duct_cells: int = param(2, "-", ge=1, le=16, integer=True,
+                            source="cells along each half of the duct's quarter arc (4 over 90° by default)")
     wall_cells: int = param(2, "-", ge=1, le=16, integer=True, source="cells through the main body's wall")
     layer_cells: int = param(1, "-", ge=1, le=8, integer=True,
-                             source="cells through each thin layer (neutral, fibre, cladding)")
-    axial_length: float = param(0.0025, "m", gt=0, le=0.07,
-                                source="largest cell length along the actuator (paper 001 §2.3 Step 6: "
-                                       "Abaqus tetrahedra no larger than 7 mm)")
+                             source="cells through each thin layer (neutral, fibre, cladding): one quadratic "
+                                    "cell carries a quadratic field through 0.1-2.5 mm")
+    axial_length: float = param(0.02, "m", gt=0, le=0.07,
+                                source="largest cell length along the actuator (paper 001 §2.3 Step 6 kept "
+                                       "Abaqus's tetrahedra under 7 mm; these cells are quadratic hexahedra)")
 
-    def refined(self, ratio: int) -> MeshSize:
-        """Every count times ``ratio`` and the cell length over it (a uniform refinement)."""
-        return MeshSize(self.duct_cells * ratio, self.wall_cells * ratio, self.layer_cells * ratio,
-                        self.axial_length / ratio)
+    @classmethod
+    def at_refinement(cls, ratio: int) -> MeshSize:
+        """The convergence study's family: ``ratio`` cells per duct half-arc and through the wall,
+        cells ``40 mm / ratio`` long, one cell through each thin layer (1: coarse, 2: the
+        studies' mesh, 4: fine)."""
+        return cls(duct_cells=ratio, wall_cells=ratio, layer_cells=1, axial_length=0.04 / ratio).validate()
 
 
 @dataclass(frozen=True)

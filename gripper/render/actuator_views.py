@@ -39,10 +39,11 @@ def _surface(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
 
 
 def draw(points: np.ndarray, cells: np.ndarray, title: str, ax: Any, limits: np.ndarray) -> None:
-    """One view of the deformed actuator on a 3D axis (the clamp at the top, hanging down)."""
+    """One view of the deformed actuator on a 3D axis: its length across, the clamped end on the
+    right, the neutral layer below (it bends downwards, towards the layer)."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    quads = _surface(points, cells)[:, :, [0, 2, 1]] * np.array([1.0, -1.0, 1.0]) * 1e3  # mm; z down
+    quads = _surface(points, cells)[:, :, [0, 2, 1]] * np.array([1.0, -1.0, 1.0]) * 1e3  # mm: (x, -z, y)
     normal = np.cross(quads[:, 1] - quads[:, 0], quads[:, 3] - quads[:, 0])
     shade = 0.45 + 0.5 * np.abs(normal[:, 1]) / (np.linalg.norm(normal, axis=1) + 1e-30)
     colours = np.column_stack([0.9 * shade, 0.55 * shade, 0.35 * shade, np.ones_like(shade)])

@@ -33,8 +33,11 @@ RESPONSES: dict[str, dict[str, type]] = {
     "tension_for_angle": {"angle_deg": float},
     "blocked_force": {"r": float},
     "grasp": {"objects": list, "trials": int},
-    "inflation": {"pressure_max": float, "steps": int},
+    "inflation": {"pressure_max": float, "steps": int, "refinement": int},
 }
+# upper bounds of response options: the actuator model's pressure range (PneumaticActuator.pressure_max's
+# bound), load steps, and the finest mesh that fits this machine's memory (refinement 8: ~600k unknowns)
+RESPONSE_LIMITS = {"inflation": {"pressure_max": 1e6, "steps": 100, "refinement": 8}}
 MODEL_RESPONSES = {"gripper": ("bending", "tension_for_angle", "blocked_force", "grasp"), "actuator": ("inflation",)}
 
 
@@ -336,6 +339,8 @@ def load_study(path: str | Path) -> Study:
                 raise err("responses." + name, f"{k} must be a number > 0, got {v!r}")
             if typ is int and not (isinstance(v, int) and not isinstance(v, bool) and v >= 1):
                 raise err("responses." + name, f"{k} must be an integer >= 1, got {v!r}")
+            if name in RESPONSE_LIMITS and k in RESPONSE_LIMITS[name] and v > RESPONSE_LIMITS[name][k]:
+                raise err("responses." + name, f"{k} must be at most {RESPONSE_LIMITS[name][k]:g}, got {v!r}")
             if typ is list:
                 from gripper.objects.library import get_object
                 if not isinstance(v, list) or not v:
