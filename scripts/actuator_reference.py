@@ -140,7 +140,8 @@ def studies(data: dict, folders: list[Path]) -> dict:
         out[folder.name] = {"name": study.name, "key": key, "base_value": get_dotted(study.base, key),
                             "fixed": study.base.to_dict()["actuator"], "points": [
             {"changes": r["changes"], "status": r["status"], "wall_time_s": round(r["wall_time_s"], 1),
-             "curve": r.get("curves", {}), "error": r.get("error", "")} for r in sorted(rows, key=lambda r: r["point"])]}
+             "curve": r.get("curves", {}), "error": r.get("error", "")}
+            for r in sorted(rows, key=lambda r: r["point"])]}
     data["studies"] = out
     save(data)
     studies_plot(data)

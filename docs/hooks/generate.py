@@ -123,11 +123,13 @@ def _actuator_convergence() -> str:
         return "*Not measured yet: run `scripts/actuator_reference.py convergence`.*"
     rows = ["| refinement | cells | unknowns | bending at 250 kPa [deg] | sweep time [s] |", "|---|---|---|---|---|"]
     for ratio, sw in sorted(data["sweeps"].items(), key=lambda kv: int(kv[0])):
-        rows.append(f"| {ratio} | {sw['cells']} | {sw['unknowns']} | {sw['angle_deg'][-1]:.2f} | {sw['wall_time_s']:.0f} |")
+        rows.append(f"| {ratio} | {sw['cells']} | {sw['unknowns']} | {sw['angle_deg'][-1]:.2f} | "
+                    f"{sw['wall_time_s']:.0f} |")
     r = data["richardson"]
     rows += ["", f"Observed order p = {r['order']:.2f}; extrapolated bending angle {r['extrapolated_deg']:.2f}°; "
                  f"grid convergence index (safety factor 1.25) {100 * r['gci_fine']:.2f} % on the fine mesh and "
-                 f"**{100 * r['gci_studies_mesh']:.2f} % on the studies' mesh** (refinement {r['studies_refinement']}); "
+                 f"**{100 * r['gci_studies_mesh']:.2f} % on the studies' mesh** "
+                 f"(refinement {r['studies_refinement']}); "
                  f"asymptotic-range ratio {r['asymptotic_ratio']:.3f} (1 in the asymptotic range)."]
     return "\n".join(rows)
 
@@ -142,8 +144,8 @@ def _actuator_check() -> str:
     rows = [head, "|---" * (len(sa["pressure_kPa"]) + 1) + "|",
             "| finite elements [deg] | " + " | ".join(f"{a:.1f}" for a in fe["angle_deg"]) + " |",
             "| semi-analytical [deg] | " + " | ".join(f"{a:.1f}" for a in sa["angle_deg"]) + " |",
-            "| FE / semi-analytical | - | " + " | ".join(f"{f / a:.2f}" for f, a in
-                                                        zip(fe["angle_deg"][1:], sa["angle_deg"][1:], strict=True)) + " |"]
+            "| FE / semi-analytical | - | "
+            + " | ".join(f"{f / a:.2f}" for f, a in zip(fe["angle_deg"][1:], sa["angle_deg"][1:], strict=True)) + " |"]
     return "\n".join(rows)
 
 

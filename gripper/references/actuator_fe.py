@@ -173,7 +173,7 @@ def linear_solver():
     return pypardiso.spsolve
 
 
-def inflate(actuator: PneumaticActuator, pressures: Sequence[float], size: MeshSize | None = None, *,
+def inflate(actuator: PneumaticActuator, pressures: Sequence[float] | np.ndarray, size: MeshSize | None = None, *,
             keep_shapes: bool = False, largest_step: float = PRESSURE_STEP,
             bulk_ratio: float = BULK_RATIO) -> Inflation:
     """Inflate the actuator through ``pressures`` [Pa] (increasing) and return the bending angle

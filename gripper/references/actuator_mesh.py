@@ -263,18 +263,17 @@ def cross_section(actuator: PneumaticActuator, size: MeshSize) -> tuple[np.ndarr
     ys = _levels([(g.y_fibre_bottom, size.layer_cells), (g.y_neutral_bottom, size.layer_cells),
                   (g.y_neutral_top, size.layer_cells), (yc, size.wall_cells)], g.y_bottom) - yc
     blocks.append(np.stack(np.meshgrid(xs, ys, indexing="ij"), axis=-1))
-    pts, cells, duct, offset = [], [], [], 0
+    pts, block_cells, duct, offset = [], [], [], 0
     for k, b in enumerate(blocks):
         p, c = _grid_quads(b)
         pts.append(p)
-        cells.append(c + offset)
+        block_cells.append(c + offset)
         duct.append(np.full(len(c), k < 3))  # the core and the two wedges
         offset += len(p)
     points = np.concatenate(pts) + np.array([0.0, yc])
-    cells = np.concatenate(cells)
     keys = np.round(points, MERGE_DECIMALS)
     _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-    points, cells = points[first], inverse.reshape(-1)[cells]
+    points, cells = points[first], inverse.reshape(-1)[np.concatenate(block_cells)]
     # orient every quad counter-clockwise (its signed area positive)
     p = points[cells]
     area = 0.5 * np.sum(p[:, :, 0] * np.roll(p[:, :, 1], -1, 1) - np.roll(p[:, :, 0], -1, 1) * p[:, :, 1], axis=1)

@@ -41,7 +41,7 @@ def _surface(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
 def draw(points: np.ndarray, cells: np.ndarray, title: str, ax: Any, limits: np.ndarray) -> None:
     """One view of the deformed actuator on a 3D axis: its length across, the clamped end on the
     right, the neutral layer below (it bends downwards, towards the layer)."""
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # type: ignore[import-untyped]
 
     quads = _surface(points, cells)[:, :, [0, 2, 1]] * np.array([1.0, -1.0, 1.0]) * 1e3  # mm: (x, -z, y)
     normal = np.cross(quads[:, 1] - quads[:, 0], quads[:, 3] - quads[:, 0])
@@ -100,7 +100,7 @@ def inflation_video(pressures: np.ndarray, shapes: list[np.ndarray], cells: np.n
         ax = fig.add_subplot(projection="3d")
         draw(pts, cells, f"{p / 1e3:.0f} kPa", ax, limits)
         fig.canvas.draw()
-        frames.append(np.asarray(fig.canvas.buffer_rgba())[:, :, :3].copy())
+        frames.append(np.asarray(fig.canvas.buffer_rgba())[:, :, :3].copy())  # type: ignore[attr-defined]
         plt.close(fig)
     write_video(np.stack(frames), out, fps)
     return out

@@ -119,7 +119,7 @@ class Study:
                 return stable_hash([self.identity()])
 
 
-def get_dotted(p: GripperParams, dotted: str):
+def get_dotted(p: GripperParams | ActuatorDesign, dotted: str):
     section, _, name = dotted.partition(".")
     return getattr(getattr(p, section), name)
 
@@ -142,7 +142,8 @@ def _replace_dotted(p, key: str, value):
     sub = getattr(p, section)
     if isinstance(getattr(sub, name), tuple) and not isinstance(value, tuple | list):
         value = (value,)
-    return p.replace(**{section: dataclasses.replace(sub, **{name: tuple(value) if isinstance(value, list) else value})})
+    value = tuple(value) if isinstance(value, list) else value
+    return p.replace(**{section: dataclasses.replace(sub, **{name: value})})
 
 
 def apply_point(base, changes: dict) -> tuple:
