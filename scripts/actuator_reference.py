@@ -1,10 +1,10 @@
 """Paper 001's actuator: the measurements ``docs/pneumatic.md`` shows, regenerated.
 
-    .venv/bin/python scripts/actuator_reference.py convergence   # three meshes, 0-250 kPa (~15 min)
+    .venv/bin/python scripts/actuator_reference.py convergence   # three meshes, 0-250 kPa (~5 min)
     .venv/bin/python scripts/actuator_reference.py studies runs/paper001_*   # after the five studies
     .venv/bin/python scripts/actuator_reference.py pictures [--video runs/actuator_inflation.mp4]
 
-``convergence`` solves the sweep on the meshes of refinement 1, 2 and 4
+``convergence`` solves the sweep on the meshes of refinement 1, 2 and 3
 (:meth:`gripper.references.actuator_mesh.MeshSize.at_refinement`), extrapolates the bending
 angle at 250 kPa (Richardson, with the grid convergence index of Celik et al. 2008) and puts the
 semi-analytical model's curve beside the studies' mesh. ``studies`` collects the five case
@@ -36,7 +36,7 @@ from gripper.references.pneumatic_params import PneumaticActuator  # noqa: E402
 
 RESULTS = ROOT / "gripper" / "data" / "actuator" / "reference_results.json"
 PRESSURES = np.linspace(0.0, 250e3, 11)  # Pa, the studies' sweep
-REFINEMENTS = (1, 2, 4)
+REFINEMENTS = (1, 2, 3)
 PICTURE = ROOT / "docs" / "actuator_inflation.png"
 CHECK_PLOT = ROOT / "docs" / "actuator_check.png"
 STUDIES_PLOT = ROOT / "docs" / "actuator_studies.png"
@@ -114,18 +114,33 @@ def convergence(data: dict) -> dict:
         print(f"refinement {ratio}: {r.angles_deg[-1]:.3f} deg at 250 kPa, {len(cells)} cells, "
               f"{r.wall_time_s:.0f} s", flush=True)
         save(data)
-    h = tuple(1.0 / ratio for ratio in REFINEMENTS)
-    f = tuple(sweeps[str(ratio)]["angle_deg"][-1] for ratio in REFINEMENTS)
-    rich = richardson(h, f)
-    r21 = h[1] / h[2]
-    gci_medium = rich.asymptotic_ratio * r21 ** rich.order * rich.gci_fine
-    data["richardson"] = {"order": rich.order, "extrapolated_deg": rich.extrapolated, "gci_fine": rich.gci_fine,
-                          "gci_studies_mesh": gci_medium, "asymptotic_ratio": rich.asymptotic_ratio,
-                          "studies_refinement": STUDY_REFINEMENT}
+    extrapolate(data)
     data["semi_analytical"] = {"pressure_kPa": (PRESSURES / 1e3).tolist(),
                                "angle_deg": bending_curve_deg(PneumaticActuator(), PRESSURES).tolist()}
     save(data)
     check_plot(data)
+    return data
+
+
+def extrapolate(data: dict) -> dict:
+    """Richardson extrapolation of the bending (less its value at 0 kPa, gravity's) at each
+    pressure of the three meshes' sweeps; the grid convergence index of the finest and of the
+    studies' mesh (the middle one)."""
+    sweeps = data["sweeps"]
+    ratios = sorted(int(k) for k in sweeps)
+    h = tuple(1.0 / ratio for ratio in ratios)
+    rows = []
+    for i, p in enumerate(sweeps[str(ratios[0])]["pressure_kPa"]):
+        if i == 0:
+            continue
+        f = tuple(sweeps[str(r)]["angle_deg"][i] - sweeps[str(r)]["angle_deg"][0] for r in ratios)
+        rich = richardson(h, f)
+        gci_medium = rich.asymptotic_ratio * (h[1] / h[2]) ** rich.order * rich.gci_fine
+        rows.append({"pressure_kPa": p, "angles_deg": list(f), "order": rich.order,
+                     "extrapolated_deg": rich.extrapolated, "gci_fine": rich.gci_fine,
+                     "gci_studies_mesh": gci_medium, "asymptotic_ratio": rich.asymptotic_ratio})
+    data["richardson"] = {"refinements": ratios, "studies_refinement": STUDY_REFINEMENT, "by_pressure": rows}
+    save(data)
     return data
 
 
@@ -166,6 +181,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="what", required=True)
     sub.add_parser("convergence")
+    sub.add_parser("extrapolate", help="redo the extrapolation from the saved sweeps")
     st = sub.add_parser("studies")
     st.add_argument("folders", nargs="+", type=Path)
     pi = sub.add_parser("pictures")
@@ -174,6 +190,8 @@ def main() -> None:
     data = load()
     if args.what == "convergence":
         convergence(data)
+    elif args.what == "extrapolate":
+        extrapolate(data)
     elif args.what == "studies":
         studies(data, args.folders)
     else:

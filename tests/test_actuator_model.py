@@ -151,3 +151,20 @@ def test_inflation_is_deterministic(coarse_sweep):
 def test_a_pressure_not_reached_is_refused(coarse_sweep):
     with pytest.raises(ValueError, match="not reached"):
         coarse_sweep.angle_at(250e3)
+
+
+def test_committed_reference_results_are_not_stale():
+    """``gripper/data/actuator/reference_results.json`` (the docs' tables) holds the coarse mesh's
+    sweep; the model solved now must give it again (``scripts/actuator_reference.py convergence``
+    regenerates the file)."""
+    import json
+
+    from gripper.core.resources import DATA_DIR
+    from gripper.references.actuator_fe import inflate
+
+    path = DATA_DIR / "actuator" / "reference_results.json"
+    if not path.is_file():
+        pytest.skip("no committed reference results")
+    sweep = json.loads(path.read_text())["sweeps"]["1"]
+    r = inflate(PneumaticActuator(), np.asarray(sweep["pressure_kPa"]) * 1e3, MeshSize.at_refinement(1))
+    assert r.angles_deg == pytest.approx(sweep["angle_deg"], abs=1e-6)

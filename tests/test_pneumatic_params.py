@@ -23,16 +23,22 @@ def test_the_defaults_are_the_papers_recommended_design():
 def test_the_helix_pitch_follows_from_the_twist_angle():
     a = PneumaticActuator(twist_angle_deg=10.0).validate()
     turns = a.length / a.fibre_pitch
-    # one turn advances 2πr tan(α) along the axis: the fibre's length per turn is 2πr / cos(α)
-    assert turns * 2 * math.pi * a.winding_radius / math.cos(math.radians(10.0)) == pytest.approx(
-        math.hypot(a.length, turns * 2 * math.pi * a.winding_radius))
+    # one turn advances P tan(α) along the axis (P the winding's perimeter): the thread's length
+    # per turn is P / cos(α), the unrolled helix's hypotenuse
+    assert turns * a.winding_perimeter / math.cos(math.radians(10.0)) == pytest.approx(
+        math.hypot(a.length, turns * a.winding_perimeter))
+    # the perimeter: half-round r + d/2, the two sides down past the neutral layer, the corners, the bottom
+    d = a.fibre_diameter
+    assert a.winding_perimeter == pytest.approx(
+        math.pi * (a.outer_radius + d / 2) + 2 * (a.main_body_thickness + a.neutral_thickness) + math.pi * d / 2
+        + 2 * a.outer_radius)
 
 
 @pytest.mark.parametrize("changes,word", [
     ({"cladding_thickness": -0.001}, "actuator.cladding_thickness"),
     ({"twist_angle_deg": 0.2}, "overlap"),
     ({"segment_gaps": (0.005,)}, "actuator.segment_gaps"),
-    ({"segment_lengths": (0.1, 0.1, 0.1)}, "more than the length"),
+    ({"segment_lengths": (0.1, 0.1, 0.1), "segment_gaps": (0.0, 0.0)}, "more than the length"),
     ({"yeoh_c10": 0.0}, "actuator.yeoh_c10"),
 ])
 def test_bad_values_are_refused_in_one_line(changes, word):

@@ -77,7 +77,7 @@ class MeshSize(Validated):
     def at_refinement(cls, ratio: int) -> MeshSize:
         """The convergence study's family: ``ratio`` cells per duct half-arc and through the wall,
         cells ``40 mm / ratio`` long, one cell through each thin layer (1: coarse, 2: the
-        studies' mesh, 4: fine)."""
+        studies' mesh, 3: the convergence study's finest)."""
         return cls(duct_cells=ratio, wall_cells=ratio, layer_cells=1, axial_length=0.04 / ratio).validate()
 
 

@@ -30,8 +30,7 @@ nearly in the hoop direction).
 
 Example:
     >>> from gripper.references.bending_moment_model import bending_angle_deg
-    >>> from gripper.references.actuator_mesh import Geometry
-from gripper.references.pneumatic_params import PneumaticActuator
+    >>> from gripper.references.pneumatic_params import PneumaticActuator
     >>> round(bending_angle_deg(PneumaticActuator(), 50e3), 1) > 0
     True
 """
