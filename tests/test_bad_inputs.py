@@ -151,7 +151,9 @@ def _session_members(sid: int) -> list[str]:
 def test_ctrl_c_ends_a_run_in_one_line_and_keeps_its_trials(tmp_path):
     """SIGINT to the whole process group, as a terminal's Ctrl-C sends it, with two workers."""
     out = tmp_path / "run"
-    cmd = [sys.executable, "-m", "gripper.cli.main", "bench", "--objects", "block", "--trials", "40",
+    # 400 trials: far more than can finish between the second trial and the signal, even on a loaded
+    # machine (with 40, a full-suite run once finished them all first and exited 0)
+    cmd = [sys.executable, "-m", "gripper.cli.main", "bench", "--objects", "block", "--trials", "400",
            "--out", str(out), "--no-progress", "--workers", "2"]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True, cwd=tmp_path)
