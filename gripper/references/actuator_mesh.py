@@ -1,20 +1,22 @@
 """The hexahedral mesh of paper 001's actuator (:mod:`gripper.references.pneumatic_params`): half
 the cross-section (the actuator is symmetric about its mid-plane x = 0) in structured quads,
-swept along the length into eight-node hexahedra, with each cell's material and each fibre
-cell's winding direction.
+swept along the length into eight-node hexahedra (and, for the solver, twenty-node ones:
+:meth:`ActuatorMesh.quadratic`), with each cell's material and each fibre cell's winding
+direction.
 
 The cross-section (x across, y up from the neutral layer's mid-plane, z along the length from
 the clamped end; half-rounds centred at y_c = t_n/2 + t):
 
-- the air duct, a half-disc of radius a above y_c (an O-grid: a square core and two wedges);
+- the air duct, a half-disc of radius a above y_c whose two edges are rounded (``DUCT_FILLET``;
+  an O-grid: a square core and two wedges);
 - the main body around it: a half-ring a ≤ r ≤ a + t above y_c and a rectangle of the body's
   width and thickness t below;
 - the neutral layer, thickness t_n, under the body, as wide as the body;
 - the fibre layer, thickness d (the fibre's diameter), wound around body and neutral layer;
 - the cladding, thickness t_c, around everything.
 
-The duct is open over the length except for a sealing cap of the body's wall thickness at each
-end (paper 001 §2.1: "sealed at both ends"; the cap's thickness is assumed: the moulded wall's).
+The duct is open over the length except for a sealing cap at each end (paper 001 §2.1: "sealed
+at both ends"; the cap's thickness, ``CAP_THICKNESS``, is assumed, with its reason).
 The fibre layer's and neutral layer's materials are in :mod:`gripper.references.fibre_materials`.
 
 Example:

@@ -5,17 +5,19 @@ energy in the cells that hold them (:mod:`gripper.references.actuator_mesh`).
   itself, right- and left-handed, paper 001 §2.4.2 case 5) along a± = cos α h ± sin α e_z, h the
   winding's path around the cross-section and α the twist angle. Each family stores
   W = φ E_f (I₄ − 1)² / 8 per unit volume (the fibre's Saint Venant-Kirchhoff energy
-  E_f ε_GL² / 2, ε_GL = (I₄ − 1)/2, I₄ = a·C·a) in tension only: a thread buckles rather than carry
-  compression. φ is the fibre's volume fraction in its layer, one thread of diameter d per
-  family every pitch p: φ = π d / (4 p cos α).
+  E_f ε_GL² / 2, ε_GL = (I₄ − 1)/2, I₄ = a·C·a), in tension and in compression
+  (``TENSION_ONLY_FLOOR``: a tension-only switch at I₄ = 1 made Newton's method chatter between
+  the two branches and fail within the first 25 kPa; the fibre runs nearly in the hoop
+  direction, which the pressure keeps stretched). φ is the fibre's volume fraction in its layer,
+  one thread of diameter d per family every pitch p: φ = π d / (4 p cos α).
 - **The fabric neutral layer** as a membrane: the plane-stress Saint Venant-Kirchhoff energy of
   its in-plane Green-Lagrange strains (across x and along z; E, ν), without the transverse shear
   that would lock the thin eight-node cells in bending, so the layer keeps its own bending
   stiffness E t³/12 (linear strain through one cell) and its inextensibility.
 
 For each the stress is P = F S (S the second Piola-Kirchhoff stress) and the tangent
-A_iJkL = δ_ik S_JL + F_iM C_MJNL F_kN with C = ∂S/∂E; for a fibre family, C = φ E_f a⊗a⊗a⊗a while
-stretched. The tests check both against finite differences of the energy.
+A_iJkL = δ_ik S_JL + F_iM C_MJNL F_kN with C = ∂S/∂E; for a fibre family, C = φ E_f a⊗a⊗a⊗a.
+The tests check both against finite differences of the energy.
 
 Example:
     >>> import numpy as np
@@ -32,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 EYE = np.eye(3)
-TENSION_ONLY_FLOOR = 0.0  # I4 below which a family carries nothing (1.0: tension only)
+TENSION_ONLY_FLOOR = 0.0  # I₄ below which a family carries nothing (0: never; 1.0 would be tension only)
 
 
 def _fibre_terms(F: np.ndarray, directions, stiffness: np.ndarray):
