@@ -26,6 +26,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from gripper.bench.execution import read_jsonl  # noqa: E402
 from gripper.core.atomic import write_text_atomic  # noqa: E402
 from gripper.experiments.actuator_responses import STUDY_REFINEMENT  # noqa: E402
 from gripper.references.actuator_fe import inflate  # noqa: E402
@@ -149,7 +150,7 @@ def studies(data: dict, folders: list[Path]) -> dict:
 
     out = {}
     for folder in folders:
-        rows = [json.loads(line) for line in (folder / "results.jsonl").read_text().splitlines() if line.strip()]
+        rows = read_jsonl(folder / "results.jsonl")
         study = load_study(folder.name)  # the shipped study of that name
         key = next(iter(study.vary))
         out[folder.name] = {"name": study.name, "key": key, "base_value": get_dotted(study.base, key),

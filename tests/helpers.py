@@ -31,3 +31,11 @@ def run_into_fresh_folder(tmp_path_factory, argv: list[str], *, text: str, filen
     out = tmp_path_factory.mktemp("ref") / "run"
     assert main([*argv, str(path), "--out", str(out), "--workers", "1", "--no-progress"]) == 0
     return path, out
+
+
+def study_records(out: Path) -> list[dict]:
+    """A study run's records without their wall times (which differ from run to run)."""
+    import json
+
+    recs = [json.loads(x) for x in (out / "results.jsonl").read_text().splitlines()]
+    return [{k: v for k, v in r.items() if k != "wall_time_s"} for r in recs]

@@ -1,12 +1,11 @@
 """Paper 001's case studies on the study layer: the shipped files, refusal of bad actuator
 values in one line, and a small actuator study's results at 1 and 2 workers and after a kill."""
 
-import json
 import subprocess
 import sys
 
 import pytest
-from helpers import kill_after_lines
+from helpers import kill_after_lines, study_records
 
 from gripper.cli.main import main
 from gripper.studies.study_file import ActuatorDesign, apply_point, load_study
@@ -31,11 +30,6 @@ inflation = { pressure_max = 25000.0, steps = 1, refinement = 1 }
 [objective]
 maximize = "bending_angle_at_max_deg"
 """
-
-
-def _records(out):
-    recs = [json.loads(x) for x in (out / "results.jsonl").read_text().splitlines()]
-    return [{k: v for k, v in r.items() if k != "wall_time_s"} for r in recs]
 
 
 @pytest.mark.parametrize("case", CASES)
@@ -86,7 +80,7 @@ def reference(study_file, tmp_path_factory):
 
 
 def test_actuator_study_outputs(reference):
-    recs = _records(reference)
+    recs = study_records(reference)
     assert [r["point"] for r in recs] == [0, 1, 2] and all(r["status"] == "ok" for r in recs)
     angle = {r["changes"].get("actuator.twist_angle_deg", 4.0): r["metrics"]["bending_angle_at_max_deg"]
              for r in recs}
@@ -99,7 +93,7 @@ def test_actuator_study_outputs(reference):
 def test_actuator_study_same_results_at_two_workers(study_file, reference, tmp_path):
     out = tmp_path / "w2"
     assert main(["study", str(study_file), "--out", str(out), "--workers", "2", "--no-progress"]) == 0
-    assert _records(out) == _records(reference)
+    assert study_records(out) == study_records(reference)
 
 
 def test_actuator_study_resumes_after_a_kill(study_file, reference, tmp_path):
@@ -108,4 +102,4 @@ def test_actuator_study_resumes_after_a_kill(study_file, reference, tmp_path):
            "--no-progress"]
     assert 1 <= kill_after_lines(cmd, out / "results.jsonl", 1) < 3
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    assert _records(out) == _records(reference)
+    assert study_records(out) == study_records(reference)

@@ -1,11 +1,10 @@
 """Design studies: workers, resume after SIGKILL, refusal of bad study files, responses."""
 
-import json
 import subprocess
 import sys
 
 import pytest
-from helpers import kill_after_lines
+from helpers import kill_after_lines, study_records
 
 from gripper.cli.main import main
 from gripper.core.params import GripperParams
@@ -30,11 +29,6 @@ minimize = "tension_for_angle_N"
 """
 
 
-def _records(out):
-    recs = [json.loads(x) for x in (out / "results.jsonl").read_text().splitlines()]
-    return [{k: v for k, v in r.items() if k != "wall_time_s"} for r in recs]
-
-
 @pytest.fixture(scope="module")
 def study_file(tmp_path_factory):
     path = tmp_path_factory.mktemp("study") / "s.toml"
@@ -50,7 +44,7 @@ def reference(study_file, tmp_path_factory):
 
 
 def test_outputs_and_physics(reference):
-    recs = _records(reference)
+    recs = study_records(reference)
     assert [r["point"] for r in recs] == [0, 1, 2, 3, 4] and all(r["status"] == "ok" for r in recs)
     # a longer lever arm (hole further from the hinge) needs less tension for the same bend
     t = {r["changes"].get("finger.hole_height", 0.012): r["metrics"]["tension_for_angle_N"] for r in recs}
@@ -65,7 +59,7 @@ def test_outputs_and_physics(reference):
 def test_two_workers_same_results(study_file, reference, tmp_path):
     out = tmp_path / "w2"
     assert main(["study", str(study_file), "--out", str(out), "--workers", "2", "--no-progress"]) == 0
-    assert _records(out) == _records(reference)
+    assert study_records(out) == study_records(reference)
 
 
 def test_sigkill_then_resume(study_file, reference, tmp_path):
@@ -74,9 +68,9 @@ def test_sigkill_then_resume(study_file, reference, tmp_path):
            "--no-progress"]
     assert 2 <= kill_after_lines(cmd, out / "results.jsonl", 2) < 5
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    recs = _records(out)
+    recs = study_records(out)
     assert [r["point"] for r in recs] == [0, 1, 2, 3, 4]  # every point exactly once
-    assert recs == _records(reference)
+    assert recs == study_records(reference)
 
 
 @pytest.mark.parametrize("edit, key, line", [

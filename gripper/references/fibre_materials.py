@@ -85,18 +85,21 @@ def membrane_tensor(modulus: float, poisson: float, axes=(0, 2)) -> np.ndarray:
             + mu * (np.einsum("IK,JL->IJKL", d, d) + np.einsum("IL,JK->IJKL", d, d)))
 
 
+def _membrane_pk2(F: np.ndarray, tensor: np.ndarray) -> np.ndarray:
+    """S = C:E, E = (FᵀF - 1)/2 the Green-Lagrange strain."""
+    E = 0.5 * (np.einsum("kI...,kJ...->IJ...", F, F) - EYE.reshape(3, 3, *([1] * (F.ndim - 2))))
+    return np.einsum("IJKL,KL...->IJ...", tensor, E)
+
+
 def membrane_stress(x, tensor):
     """[P, state]: first Piola-Kirchhoff stress [Pa] of the membrane energy ½ E:C:E."""
     F, state = x[0], x[-1]
-    E = 0.5 * (np.einsum("kI...,kJ...->IJ...", F, F) - EYE.reshape(3, 3, *([1] * (F.ndim - 2))))
-    S = np.einsum("IJKL,KL...->IJ...", tensor, E)
-    return [np.einsum("iK...,KJ...->iJ...", F, S), state]
+    return [np.einsum("iK...,KJ...->iJ...", F, _membrane_pk2(F, tensor)), state]
 
 
 def membrane_elasticity(x, tensor):
     """[A]: ∂P/∂F of :func:`membrane_stress`."""
     F = x[0]
-    E = 0.5 * (np.einsum("kI...,kJ...->IJ...", F, F) - EYE.reshape(3, 3, *([1] * (F.ndim - 2))))
-    S = np.einsum("IJKL,KL...->IJ...", tensor, E)
+    S = _membrane_pk2(F, tensor)
     FC = np.einsum("iM...,MJNL->iJNL...", F, tensor)
     return [np.einsum("ik,JL...->iJkL...", EYE, S) + np.einsum("iJNL...,kN...->iJkL...", FC, F)]

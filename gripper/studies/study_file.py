@@ -137,6 +137,13 @@ def _key_line(text: str, key: str) -> int:
     return next((i for i, line in enumerate(lines, 1) if header.match(line)), 0)
 
 
+def _has_param(p, key: str) -> bool:
+    """Whether ``key`` (``section.field``) names a parameter of the design ``p``."""
+    section, _, name = key.partition(".")
+    sub = getattr(p, section, None)
+    return sub is not None and dataclasses.is_dataclass(sub) and name in {f.name for f in dataclasses.fields(sub)}
+
+
 def _replace_dotted(p, key: str, value):
     section, _, name = key.partition(".")
     sub = getattr(p, section)
@@ -288,9 +295,7 @@ def load_study(path: str | Path) -> Study:
     if design == "latin_hypercube" and (not isinstance(points, int) or not 1 <= points <= 100_000):
         raise err("points", f"must be an integer in [1, 100000] for a latin_hypercube, got {points!r}")
     for key, value in data.get("fixed", {}).items():
-        section, _, name = key.partition(".")
-        sub = getattr(base, section, None)
-        if sub is None or not dataclasses.is_dataclass(sub) or name not in {f.name for f in dataclasses.fields(sub)}:
+        if not _has_param(base, key):
             raise err(key, f"unknown parameter in [fixed]; use a dotted path of the {model}'s parameters")
         try:
             base = _replace_dotted(base, key, value).validate()
@@ -300,12 +305,10 @@ def load_study(path: str | Path) -> Study:
     if not vary:
         raise err("vary", "give at least one parameter to vary")
     for key, spec in vary.items():
-        section, _, name = key.partition(".")
-        sub = getattr(base, section, None)
-        if sub is None or not dataclasses.is_dataclass(sub) or name not in {f.name for f in dataclasses.fields(sub)}:
+        if not _has_param(base, key):
             example = "actuator.cladding_thickness" if model == "actuator" else "finger.cut_angle_deg"
             raise err(key, f"unknown parameter; use a dotted {model} parameter path such as {example}")
-        current = getattr(sub, name)
+        current = get_dotted(base, key)
         want = int if isinstance(current, int) and not isinstance(current, bool) else (
             float if isinstance(current, float | tuple) else type(current))
         if design == "latin_hypercube":
