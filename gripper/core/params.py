@@ -24,9 +24,10 @@ from typing import Any, Self
 
 from gripper.core.atomic import write_text_atomic
 from gripper.core.fields import FieldSpec, Validated, check_fields, field_specs, param
-from gripper.core.resources import DEFAULT_CALIBRATION_DIR
+from gripper.core.resources import DEFAULT_CALIBRATION_DIR, PNEUMATIC_CALIBRATION_DIR
 from gripper.core.units import DEG
 from gripper.core.user_files import read_user_data
+from gripper.pneumatic.regulator import REGULATOR_PRESETS, RegulatorDatasheet, regulator_datasheet
 from gripper.servo.datasheet import SERVO_PRESETS, ServoDatasheet, servo_datasheet
 
 # paper 000, Table 2: torsion spring stiffness 1.9e-3 N·m/deg = 0.1089 N·m/rad, as printed. The
@@ -63,6 +64,26 @@ def _committed_springs() -> tuple[tuple[float, ...], tuple[float, ...], tuple[fl
 
 
 CALIBRATED_STIFFNESS, CALIBRATED_DAMPING, CALIBRATED_REST_ANGLE_DEG = _committed_springs()
+
+# The committed calibration of the default pneumatic finger (``gripper calibrate --reference
+# actuator --write-default``): paper 001's actuator in finite elements, fitted. Its ``design``
+# block is the actuator's shape as the finger's collision body takes it, and ``fitted`` the
+# springs and the pressure's moment (per unit length: the finger's segment count is free).
+PNEUMATIC_CALIBRATION_FILE = PNEUMATIC_CALIBRATION_DIR / "calibration.json"
+ACTUATIONS = ("cable", "pneumatic")
+
+
+def _committed_pneumatic() -> dict[str, float]:
+    try:
+        data = json.loads(PNEUMATIC_CALIBRATION_FILE.read_text())
+        return {k: float(v) for k, v in {**data["design"], **data["fitted"]}.items()}
+    except (OSError, KeyError, TypeError, ValueError, AttributeError) as e:
+        raise ImportError(f"gripper: the pneumatic finger's committed calibration {PNEUMATIC_CALIBRATION_FILE} is "
+                          f"missing or malformed ({e}); regenerate it with "
+                          f"'gripper calibrate --reference actuator --write-default'") from None
+
+
+PNEUMATIC_CALIBRATED = _committed_pneumatic()
 _CALIBRATED = {"stiffness": CALIBRATED_STIFFNESS, "damping": CALIBRATED_DAMPING,
                "rest_angle_deg": CALIBRATED_REST_ANGLE_DEG}
 
@@ -396,6 +417,116 @@ class LiftAxis(Validated):
                                source="assumed: 96 mm fingers clear a 100 mm object with room to approach")
 
 
+@dataclass(frozen=True)
+class Actuation(Validated):
+    """Which finger the gripper has.
+
+    Attributes:
+        kind: ``"cable"``: paper 000's cut silicone finger bent by a cable a servo reels in (the
+            ``finger``, ``springs``, ``cable`` and ``servo`` sections); ``"pneumatic"``: paper
+            001's fibre-reinforced actuator bent by its chamber pressure, fed by a proportional
+            regulator (the ``pneumatic`` section).
+    """
+
+    SECTION = "actuation"
+
+    kind: str = param("cable", "-", choices=ACTUATIONS, source="the two seed papers' fingers")
+
+
+_PN_CAL = "fitted: the committed pneumatic calibration"
+_PN_SHAPE = "paper 001's actuator (gripper.references.pneumatic_params), as the committed calibration records it"
+
+
+@dataclass(frozen=True)
+class PneumaticFinger(Validated):
+    """The pneumatic finger: paper 001's actuator as a chain of rigid segments on hinges at its
+    neutral layer, bent by its chamber pressure (``gripper.pneumatic.chamber``).
+
+    Finger frame as the cable finger's: x from the palm to the tip, z from the back (the
+    actuator's round top, z = 0) to the grasping face (the fabric side, z = ``height``). The hinges
+    lie on the neutral layer's mid-plane, so the fabric's length never changes (the layer does
+    not stretch). Springs and the pressure's moment are stored per unit length, as a continuum's
+    (bending stiffness, curvature), so a finger of any segment count has the calibrated bend:
+    hinge stiffness = EI / pitch, knee angle = knee curvature x pitch (``pitch``: the hinge
+    spacing).
+
+    Attributes:
+        n_segments: rigid segments, the first fixed to the palm (the clamp's zero-length base).
+        length, width, height: the actuator's size.
+        neutral_height: the neutral layer's mid-plane above the grasping face.
+        mass: the actuator's mass.
+        bending_stiffness: EI of the soft range.
+        stiffening: EI added past the knee (the silicone and fibres stiffening as it bends).
+        root_stiffness: the root hinge's spring at the clamp (the clamped end's compliance,
+            lumped; not per length).
+        knee_curvature: the curvature at which the stiffening starts.
+        moment_per_pascal: the chamber pressure's bending moment per pascal, the same at every
+            hinge (a uniform section).
+        damping_ratio: each hinge's damping, as a ratio of critical on its distal segment.
+        regulator: key of :data:`gripper.pneumatic.regulator.REGULATOR_PRESETS`.
+        pressure_max: highest chamber pressure the regulator is set to.
+    """
+
+    SECTION = "pneumatic"
+
+    n_segments: int = param(8, "-", ge=3, le=64, integer=True,
+                            source="assumed: seven hinges 20 mm apart, about the cable finger's 16 mm elements")
+    length: float = param(PNEUMATIC_CALIBRATED["length"], "m", gt=0, source=_PN_SHAPE)
+    width: float = param(PNEUMATIC_CALIBRATED["width"], "m", gt=0, source=_PN_SHAPE)
+    height: float = param(PNEUMATIC_CALIBRATED["height"], "m", gt=0, source=_PN_SHAPE)
+    neutral_height: float = param(PNEUMATIC_CALIBRATED["neutral_height"], "m", gt=0, source=_PN_SHAPE)
+    mass: float = param(PNEUMATIC_CALIBRATED["mass"], "kg", gt=0, source=_PN_SHAPE)
+    bending_stiffness: float = param(PNEUMATIC_CALIBRATED["bending_stiffness"], "N·m²", gt=0, source=_PN_CAL)
+    stiffening: float = param(PNEUMATIC_CALIBRATED["stiffening"], "N·m²", ge=0, source=_PN_CAL)
+    root_stiffness: float = param(PNEUMATIC_CALIBRATED["root_stiffness"], "N·m/rad", gt=0, source=_PN_CAL)
+    knee_curvature: float = param(PNEUMATIC_CALIBRATED["knee_curvature"], "1/m", ge=0, source=_PN_CAL)
+    moment_per_pascal: float = param(PNEUMATIC_CALIBRATED["moment_per_pascal"], "N·m/Pa", gt=0, source=_PN_CAL)
+    damping_ratio: float = param(0.5, "-", gt=0, le=10,
+                                 source="assumed: paper 000 Table 2's modal damping ratio of its silicone finger")
+    regulator: str = param("smc_itv0030", "-", choices=tuple(REGULATOR_PRESETS),
+                           source="the datasheets in gripper.pneumatic.regulator")
+    pressure_max: float = param(250e3, "Pa", gt=0, le=1e6,
+                                source="paper 001 §2.3 Step 3: 0-250 kPa, the calibration's range")
+
+    @property
+    def datasheet(self) -> RegulatorDatasheet:
+        return regulator_datasheet(self.regulator)
+
+    @property
+    def pitch(self) -> float:
+        """Hinge spacing [m]: the length over the hinge count (the base and tip segments are half
+        a pitch long, :mod:`gripper.pneumatic.chamber`)."""
+        return self.length / self.n_hinges
+
+    @property
+    def n_hinges(self) -> int:
+        """Inner hinges, between segments (the root hinge at the clamp besides) [-]."""
+        return self.n_segments - 1
+
+    @property
+    def hinge_z(self) -> float:
+        """Height of the hinge axes in the finger frame: the neutral layer's mid-plane [m]."""
+        return self.height - self.neutral_height
+
+    @property
+    def hinge_stiffness(self) -> float:
+        """Each hinge's spring, EI over the segment length [N·m/rad]."""
+        return self.bending_stiffness / self.pitch
+
+    @property
+    def command_max(self) -> float:
+        """Highest set-point [Pa]: ``pressure_max`` within the regulator's range."""
+        return min(self.pressure_max, self.datasheet.pressure_max)
+
+    def check(self) -> None:
+        if self.neutral_height >= self.height:
+            raise ValueError(f"pneumatic.neutral_height: must be < pneumatic.height ({self.height:g} m), "
+                             f"got {self.neutral_height!r}")
+        if self.pressure_max > self.datasheet.pressure_max:
+            raise ValueError(f"pneumatic.pressure_max: must be at most the regulator's "
+                             f"{self.datasheet.pressure_max:g} Pa, got {self.pressure_max!r}")
+
+
 INTEGRATORS = ("euler", "implicit", "implicitfast", "rk4")
 
 
@@ -428,6 +559,8 @@ _SECTIONS: dict[str, type] = {
     "layout": GripperLayout,
     "lift": LiftAxis,
     "sim": SimOptions,
+    "actuation": Actuation,
+    "pneumatic": PneumaticFinger,
 }
 
 
@@ -448,6 +581,18 @@ class GripperParams(Validated):
     layout: GripperLayout = field(default_factory=GripperLayout)
     lift: LiftAxis = field(default_factory=LiftAxis)
     sim: SimOptions = field(default_factory=SimOptions)
+    actuation: Actuation = field(default_factory=Actuation)
+    pneumatic: PneumaticFinger = field(default_factory=PneumaticFinger)
+
+    @property
+    def pneumatic_fingers(self) -> bool:
+        """True when the gripper has pneumatic fingers (``actuation.kind``)."""
+        return self.actuation.kind == "pneumatic"
+
+    @property
+    def finger_length(self) -> float:
+        """Length of the gripper's fingers, whichever they are [m]."""
+        return self.pneumatic.length if self.pneumatic_fingers else self.finger.length
 
     def validate(self) -> Self:
         """Check every field; return ``self``.
@@ -463,6 +608,8 @@ class GripperParams(Validated):
         self.layout.validate()
         self.lift.validate()
         self.sim.validate()
+        self.actuation.validate()
+        self.pneumatic.validate()
         if self.cable.diameter >= self.finger.hole_diameter:
             raise ValueError(f"cable.diameter: must be smaller than finger.hole_diameter "
                              f"({self.finger.hole_diameter:g} m), got {self.cable.diameter!r}")

@@ -6,7 +6,8 @@ wheel.
   layout: ``soft_gripper.xml``, ``scene.xml`` (which includes it), README, CHANGELOG, LICENSE;
 - ``gripper/data/calibration/``: an example bench-data CSV for ``gripper calibrate --data``, and
   ``default/``, the default design's committed calibration (``calibration.json``, its
-  reference run, convergence study, error table and report);
+  reference run, convergence study, error table and report), and ``pneumatic/``, the default
+  pneumatic finger's (fitted to paper 001's actuator in finite elements);
 - ``gripper/data/studies/``: example study files and the committed stiffness surrogate;
 - ``gripper/data/objects/``: the built-in grasp objects' object files.
 """
@@ -23,6 +24,7 @@ MODEL_DIR = MODELS_DIR / "soft_gripper"
 STUDIES_DIR = DATA_DIR / "studies"
 CALIBRATION_EXAMPLES_DIR = DATA_DIR / "calibration"
 DEFAULT_CALIBRATION_DIR = CALIBRATION_EXAMPLES_DIR / "default"
+PNEUMATIC_CALIBRATION_DIR = CALIBRATION_EXAMPLES_DIR / "pneumatic"
 OBJECTS_DIR = DATA_DIR / "objects"
 
 

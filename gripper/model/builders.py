@@ -41,6 +41,7 @@ from gripper.model.geometry import (
 )
 from gripper.model.names import MODEL_NAME, FingerNames, finger_name
 from gripper.objects.library import get_object
+from gripper.pneumatic.chamber import add_pneumatic_finger, add_segment_meshes
 from gripper.servo.actuator import add_servo, set_dcmotor
 
 SILICONE_RGBA = (0.93, 0.93, 0.88, 1.0)
@@ -249,7 +250,10 @@ def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames,
 
 def tune_soft_limits(spec: mujoco.MjSpec, p: GripperParams) -> None:
     """Set the cable limits' and the hinge limits' ``solref`` from physical stiffnesses (the
-    cable's EA/L, the closed cut's): compiles once to read the inverse inertias."""
+    cable's EA/L, the closed cut's): compiles once to read the inverse inertias. The pneumatic
+    finger has neither (its hinges' range is far past its calibrated bend)."""
+    if p.pneumatic_fingers:
+        return
     model = spec.compile()
     tune_cable_stiffness(spec, p, model)
     tune_closure_limits(spec, p, model)
@@ -300,6 +304,26 @@ def set_options(spec: mujoco.MjSpec, p: GripperParams) -> None:
     spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_ISLAND
 
 
+def finger_height(p: GripperParams) -> float:
+    """Height of the gripper's fingers from back to grasping face [m], whichever they are."""
+    return p.pneumatic.height if p.pneumatic_fingers else p.finger.height
+
+
+def add_fingers(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, defaults: dict) -> list[FingerNames]:
+    """Every finger on the palm (cable or pneumatic, ``p.actuation``) with its drive."""
+    out = []
+    for k in range(p.layout.n_fingers):
+        pos, quat = finger_mount_pose(p, k)
+        if p.pneumatic_fingers:
+            names = FingerNames(finger_name(k), p.pneumatic.n_segments, pneumatic=True)
+            add_pneumatic_finger(spec, parent, p, names, pos, quat, defaults)
+        else:
+            names = add_finger(spec, parent, p, finger_name(k), pos, quat, defaults)
+            add_cable_drive(spec, p, names, defaults["servo"])
+        out.append(names)
+    return out
+
+
 def finger_mount_pose(p: GripperParams, k: int) -> tuple[np.ndarray, np.ndarray]:
     """Position and quaternion of finger ``k``'s frame in the palm frame.
 
@@ -308,7 +332,7 @@ def finger_mount_pose(p: GripperParams, k: int) -> tuple[np.ndarray, np.ndarray]
     """
     phi = 2.0 * math.pi * k / p.layout.n_fingers
     c, s = math.cos(phi), math.sin(phi)
-    radial = p.layout.palm_radius + p.finger.height
+    radial = p.layout.palm_radius + finger_height(p)
     pos = np.array([radial * c, radial * s, 0.0])
     rot = np.column_stack([[0, 0, -1], [s, -c, 0], [-c, -s, 0]]).astype(float)
     tilt = p.layout.mount_tilt_deg * DEG
@@ -329,7 +353,10 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
     spec = mujoco.MjSpec()
     set_options(spec, p)
     defaults = add_defaults(spec, p)
-    add_element_meshes(spec, p)
+    if p.pneumatic_fingers:
+        add_segment_meshes(spec, p)
+    else:
+        add_element_meshes(spec, p)
 
     lift = p.lift
     palm = spec.worldbody.add_body(name="palm", pos=[0, 0, lift.home_height], childclass=MODEL_NAME)
@@ -343,7 +370,7 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
         palm.add_joint(name=name, type=mujoco.mjtJoint.mjJNT_SLIDE, axis=axis,
                        range=[-travel, travel], limited=mujoco.mjtLimited.mjLIMITED_TRUE,
                        armature=0.0, damping=0.0)
-    radius = p.layout.palm_radius + p.finger.height + 0.004
+    radius = p.layout.palm_radius + finger_height(p) + 0.004
     palm.add_geom(defaults["visual"], name="palm_visual", type=mujoco.mjtGeom.mjGEOM_CYLINDER,
                   size=[radius, 0.5 * p.layout.palm_thickness, 0],
                   pos=[0, 0, 0.5 * p.layout.palm_thickness], material="palm")
@@ -354,10 +381,7 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
     palm.add_site(name="palm_center", pos=[0, 0, 0], size=[0.002] * 3)
     palm.add_camera(name="palm_cam", pos=[0, 0, -0.005], quat=[0, 1, 0, 0], fovy=90)
 
-    for k in range(p.layout.n_fingers):
-        pos, quat = finger_mount_pose(p, k)
-        names = add_finger(spec, palm, p, finger_name(k), pos, quat, defaults)
-        add_cable_drive(spec, p, names, defaults["servo"])
+    add_fingers(spec, palm, p, defaults)
 
     for name, _ in axes:
         act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)

@@ -167,9 +167,11 @@ def linear_solver():
 
 def inflate(actuator: PneumaticActuator, pressures: Sequence[float] | np.ndarray, size: MeshSize | None = None, *,
             keep_shapes: bool = False, largest_step: float = PRESSURE_STEP,
-            bulk_ratio: float = BULK_RATIO) -> Inflation:
+            bulk_ratio: float = BULK_RATIO, gravity: Sequence[float] = (0.0, 0.0, GRAVITY)) -> Inflation:
     """Inflate the actuator through ``pressures`` [Pa] (increasing) and return the bending angle
-    at each, after gravity at 0 Pa.
+    at each, after gravity at 0 Pa (``gravity`` [m/s²] in the mesh's frame: by default along the
+    actuator, +z, hanging from its clamp; the pneumatic finger's calibration also lays it
+    sideways, :mod:`gripper.references.actuator_bending`).
 
     Load steps of at most ``largest_step``, each solved by Newton's method from the last
     converged state. A step that does not converge is restored and halved (a cutback), down to
@@ -188,7 +190,7 @@ def inflate(actuator: PneumaticActuator, pressures: Sequence[float] | np.ndarray
     points = field_[0].region.mesh.points
     line = m.tip_line()
     for f in forces:
-        f.update(np.array([0.0, 0.0, GRAVITY]))
+        f.update(np.asarray(gravity, dtype=float))
     targets = np.unique(np.r_[0.0, np.asarray(pressures, dtype=float)])
     reached: list[float] = []
     angles: list[float] = []

@@ -24,9 +24,11 @@ def add(sub) -> None:
     cal.add_argument("--params", metavar="FILE", help="gripper parameter file; defaults if omitted")
     cal.add_argument("--data", metavar="CSV", help="bench data instead of the reference run")
     cal.add_argument("--out", default="runs/calibration", help="output folder (default runs/calibration)")
-    cal.add_argument("--reference", choices=("continuum", "fmbs"), default="continuum",
-                     help="reference kind: the continuum body (default) or paper 000's flexible "
-                          "multibody model (elements as flexible bodies, Table 2's hinge springs)")
+    cal.add_argument("--reference", choices=("continuum", "fmbs", "actuator"), default="continuum",
+                     help="reference kind: the continuum body (default), paper 000's flexible "
+                          "multibody model (elements as flexible bodies, Table 2's hinge springs), or "
+                          "'actuator': the pneumatic finger fitted to paper 001's actuator in finite "
+                          "elements (0-250 kPa and its sag; about 1.5 minutes)")
     cal.add_argument("--reading", choices=("per_degree", "per_radian"), default="per_degree",
                      help="fmbs: read Table 2's 1.9e-3 spring per degree (as printed) or per radian")
     cal.add_argument("--no-converge", action="store_true",
@@ -68,6 +70,8 @@ def run(args) -> int:
         print(f"wrote {path}: {len(sur.samples)} designs, leave-one-out stiffness error "
               f"{100 * sur.loo_error.max():.2f} % at most")
         return 0
+    if args.reference == "actuator":
+        return _run_actuator(args)
     if args.write_default:
         if args.params or args.data or args.reference != "continuum":
             raise ValueError("--write-default: takes no --params, --data or --reference (it "
@@ -117,4 +121,36 @@ def run(args) -> int:
     print(f"paper 000 Table 2: {PAPER_STIFFNESS_NM_PER_DEG:g} N·m/deg per hinge")
     print(f"fit {m['fit_wall_time_s']:.1f} s wall; wrote {args.out}/calibration.json, "
           f"report.png, errors.csv")
+    return 0
+
+
+def _run_actuator(args) -> int:
+    """``--reference actuator``: the pneumatic finger against paper 001's actuator."""
+    from gripper.calibration.pneumatic_fit import (
+        PNEUMATIC_FILES,
+        calibrate_pneumatic,
+        write_default_pneumatic_calibration,
+    )
+
+    say = lambda m: print(m, file=sys.stderr)  # noqa: E731
+    if args.data or args.reference != "actuator" or args.mesh_scale != 1 or args.tension_max is not None:
+        raise ValueError("--reference actuator: takes no --data, --mesh-scale or --tension-max (the reference is "
+                         "the finite-element actuator on the studies' mesh)")
+    if args.write_default:
+        if args.params:
+            raise ValueError("--write-default: takes no --params (it calibrates the default pneumatic finger)")
+        cal = write_default_pneumatic_calibration(on_progress=say)
+        out = "gripper/data/calibration/pneumatic"
+    else:
+        check_output_dir(args.out, files=PNEUMATIC_FILES)
+        p = design(args, simulates=False)
+        cal, _, _ = calibrate_pneumatic(args.out, p, on_progress=say)
+        out = args.out
+    m = cal["metrics"]
+    print(f"tip RMS error {100 * m['tip_rms_frac']:.2f} % of the length over the fitted pressures "
+          f"(largest {100 * m['tip_max_frac']:.2f} %); sag {100 * m['sag_tip_error_frac']:.2f} %")
+    for h in m["held_out"]:
+        print(f"held-out {h['pressure_kPa']:g} kPa: tip error {100 * h['tip_error_frac']:.2f} % of the length")
+    print("fitted: " + ", ".join(f"{k} {v:.4g}" for k, v in cal["fitted"].items()))
+    print(f"fit {m['fit_wall_time_s']:.1f} s wall; wrote {out}/calibration.json, reference.json, report.png")
     return 0
