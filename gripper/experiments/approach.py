@@ -75,7 +75,7 @@ def choose_grasp(est: ObjectEstimate, p: GripperParams, proto) -> str:
     """The rule of the module docstring; ``proto.grasp`` other than ``auto`` forces one."""
     if proto.grasp != "auto":
         return proto.grasp
-    clears_top = est.height + proto.palm_clearance <= p.finger.length + proto.fingertip_clearance
+    clears_top = est.height + proto.palm_clearance <= p.finger_length + proto.fingertip_clearance
     fits = est.radius < p.layout.palm_radius
     return "fingertip" if clears_top and fits else "envelope"
 
@@ -87,16 +87,25 @@ def plan_approach(est: ObjectEstimate, p: GripperParams, proto) -> ApproachPlan:
     x, y = (est.x, est.y) if proto.centre else (0.0, 0.0)
     x, y = float(np.clip(x, -travel, travel)), float(np.clip(y, -travel, travel))
     if grasp == "fingertip":
-        z = est.support_z + p.finger.length + proto.fingertip_clearance
+        z = est.support_z + p.finger_length + proto.fingertip_clearance
     else:
-        z = est.support_z + max(p.finger.length + proto.tip_clearance, est.height + proto.palm_clearance)
+        z = est.support_z + max(p.finger_length + proto.tip_clearance, est.height + proto.palm_clearance)
     return ApproachPlan(grasp=grasp, x=x, y=y, palm_z=float(z), support_z=est.support_z,
                         floor_z=est.top_z + proto.palm_clearance)
 
 
+def reach_commands(p: GripperParams) -> np.ndarray:
+    """The drive commands the reach is tabulated at: ``REACH_ANGLES`` of spool [rad], or for the
+    pneumatic gripper as many pressures [Pa] from 0 to its highest set-point."""
+    if p.pneumatic_fingers:
+        return np.linspace(0.0, p.pneumatic.command_max, len(REACH_ANGLES))
+    return REACH_ANGLES.copy()
+
+
 def finger_reach(p: GripperParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The fingers' free-closing reach: spool angles [rad], how far below the palm face the
-    lowest point of any finger is [m], and how close to the palm axis any finger comes [m].
+    """The fingers' free-closing reach: drive commands (:func:`reach_commands`: spool angles
+    [rad] or pressures [Pa]), how far below the palm face the lowest point of any finger is [m],
+    and how close to the palm axis any finger comes [m].
 
     Simulated once per design and process (no object; each angle held until at rest, the
     grasp trials' integrator and step); the lowest point is taken over the element meshes'
@@ -109,20 +118,21 @@ def finger_reach(p: GripperParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def _simulate_reach(p: GripperParams):
-    from gripper.model.names import finger_name
+    from gripper.model.names import drive_name
     from gripper.sim.scene import grasp_scene_spec
 
     spec = grasp_scene_spec(p)
     m = spec.compile()
     d = mujoco.MjData(m)
-    servo = [m.actuator(f"{finger_name(k)}_servo").id for k in range(p.layout.n_fingers)]
+    servo = [m.actuator(drive_name(k, p.pneumatic_fingers)).id for k in range(p.layout.n_fingers)]
     palm = m.body("palm").id
     geoms = [g for g in range(m.ngeom) if m.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH
              and m.geom_contype[g] and m.body(m.geom_bodyid[g]).name.startswith("f")]
     mujoco.mj_forward(m, d)
     steps = int(round(REACH_SETTLE_S / m.opt.timestep))
     low, radial = [], []
-    for a in REACH_ANGLES:
+    commands = reach_commands(p)
+    for a in commands:
         d.ctrl[servo] = a
         for _ in range(steps):
             mujoco.mj_step(m, d)
@@ -135,13 +145,13 @@ def _simulate_reach(p: GripperParams):
             rs.append(np.hypot(v[:, 0] - d.xpos[palm][0], v[:, 1] - d.xpos[palm][1]).min())
         low.append(d.xpos[palm][2] - min(zs))
         radial.append(min(rs))
-    return REACH_ANGLES.copy(), np.asarray(low), np.asarray(radial)
+    return commands, np.asarray(low), np.asarray(radial)
 
 
 def fingertip_palm_z(plan: ApproachPlan, p: GripperParams, proto, spool: np.ndarray) -> np.ndarray:
     """Palm-face height [m] that keeps the fingers' lowest point ``fingertip_clearance`` above
-    the support at spool angles ``spool`` [rad] (the deepest-reaching finger counts), never
-    below ``plan.floor_z``."""
+    the support at drive commands ``spool`` (spool angles [rad], or pressures [Pa] for the
+    pneumatic gripper; the deepest-reaching finger counts), never below ``plan.floor_z``."""
     angles, low, _ = finger_reach(p)
     reach = np.interp(spool, angles, low)
     return np.maximum(plan.support_z + proto.fingertip_clearance + reach, plan.floor_z)

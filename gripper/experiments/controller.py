@@ -128,8 +128,16 @@ class GripController:
 def check_set_point(protocol, params) -> None:
     """The one check of a protocol's set-point against a design (the benchmark, the envelope and
     every trial call it): with the controller, :func:`check_grip_tension` against the design's
-    servo; a per-object policy has no set-point."""
-    if protocol.policy == "controller":
+    servo; a per-object policy has no set-point. The pneumatic gripper: the controller only, its
+    pressure set-point within the regulator's range."""
+    if params.pneumatic_fingers:
+        from gripper.experiments.pressure_controller import check_grip_pressure
+
+        if protocol.policy != "controller":
+            raise ValueError(f"protocol.policy: the pneumatic gripper closes with the controller only "
+                             f"(a pressure set-point), got {protocol.policy!r}")
+        check_grip_pressure(protocol.grip_pressure, params.pneumatic.command_max)
+    elif protocol.policy == "controller":
         check_grip_tension(protocol.grip_tension, params.servo.max_cable_tension)
 
 

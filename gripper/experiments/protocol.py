@@ -76,6 +76,12 @@ class GraspProtocol(Validated):
     grip_tension: float = param(GRIP_TENSION, "N", gt=0, le=54,
                                 source="controller's grip set-point: cable tension per finger "
                                 "(docs/controller.md; at most the servo's stall tension, 54 N)")
+    grip_pressure: float = param(250e3, "Pa", gt=0, le=1e6,
+                                 source="pneumatic gripper's grip set-point: chamber pressure, the calibration's "
+                                 "highest (paper 001 §2.3: 0-250 kPa; gripper.experiments.pressure_controller)")
+    pressure_rate: float = param(250e3, "Pa/s", ge=1e3, le=1e8,
+                                 source="pneumatic gripper: the set-point's ramp, full pressure in 1 s (assumed: "
+                                 "about the cable fingers' closing time)")
     close_command_scale: float = param(1.0, "-", ge=0.05, le=10,
                                        source="per_object: multiplier on the object's closing command "
                                        "(>1 squeezes harder)")

@@ -29,13 +29,16 @@ STATUSES = ("ok", "error", "no_object")
 FAILED_PHASES = ("lift", "hold", "shake", "damage")
 # Fields set only when the protocol ran to its end (status "ok").
 REQUIRED_OUTCOME_FIELDS = ("lift_height_m", "slip_m", "max_slip_m", "damaged", "damage_measure",
-                           "damage_limit", "close_command_rad")
+                           "damage_limit")
 # Added in record schema 2 (gripper 0.9.0): optional, so that older records still read.
-OUTCOME_FIELDS = (*REQUIRED_OUTCOME_FIELDS, "policy", "servo_at_grasp", "servo_at_hold_end")
+OUTCOME_FIELDS = (*REQUIRED_OUTCOME_FIELDS, "close_command_rad", "policy", "servo_at_grasp", "servo_at_hold_end")
 # Added in gripper 0.12.0 (optional): the grasp made, where the palm went, the camera's estimate.
 APPROACH_FIELDS = ("grasp", "palm_xy_m", "depth_estimate")
 # Set only by the grasp controller (policy "controller").
 CONTROLLER_FIELDS = ("grip_tension_N", "contact_time_s", "grasp_time_s")
+# Added in gripper 0.15.0 (optional): the pneumatic gripper's set-point and peak chamber pressure,
+# and which fingers ran (absent: the cable gripper, as every record before).
+PNEUMATIC_FIELDS = ("actuation", "grip_pressure_Pa", "peak_pressure_Pa")
 
 
 @dataclass(frozen=True)
@@ -66,12 +69,15 @@ class TrialRecord(Mapping[str, Any]):
             the end and its largest value since the end of the lift [m].
         damaged, damage_measure, damage_limit: the object's damage measure (its unit is the
             object's) against its limit.
-        close_command_rad: the servo closing set-point used [rad of spool angle]; under the
+        close_command_rad: the servo closing set-point used [rad of spool angle] (None for the
+            pneumatic gripper, whose set-point is ``grip_pressure_Pa``); under the
             controller, the largest goal position when the close phase ended.
         policy: ``controller`` or ``per_object``.
         servo_at_grasp, servo_at_hold_end: the servos' sensed state at the end of the close
             phase and of the hold (:class:`gripper.servo.sensing.ServoReading`: ``position_rad``,
-            ``current_A``, ``load``, ``tension_N``, one entry per finger).
+            ``current_A``, ``load``, ``tension_N``, one entry per finger); for the pneumatic
+            gripper the regulators' (:class:`gripper.pneumatic.sensing.PressureReading`:
+            ``pressure_Pa``).
         grasp: ``envelope`` or ``fingertip`` (gripper.experiments.approach).
         palm_xy_m: where the approach put the palm over the table [m].
         depth_estimate: the palm camera's estimate (:class:`gripper.sim.depth.ObjectEstimate`
@@ -82,7 +88,11 @@ class TrialRecord(Mapping[str, Any]):
         grasp_time_s: from the start of closing until every finger held its set-point or the
             end of the servo's travel [s] (controller only; None if that never happened).
         error: what went unstable (status ``error``), or what the camera saw (``no_object``).
-        peak_total_force_N, peak_finger_force_N, peak_cable_tension_N: peaks over the trial.
+        peak_total_force_N, peak_finger_force_N, peak_cable_tension_N: peaks over the trial
+            (the pneumatic gripper has no cable: its tension is 0).
+        actuation: ``pneumatic`` for the pneumatic gripper (absent: the cable gripper).
+        grip_pressure_Pa: the pneumatic controller's pressure set-point [Pa].
+        peak_pressure_Pa: the highest chamber pressure any finger reached [Pa].
         warnings: MuJoCo warnings raised.
         sim_time_s, wall_time_s: simulated and wall-clock time.
         run_config_hash: the benchmark run's configuration hash (set by the benchmark).
@@ -120,6 +130,9 @@ class TrialRecord(Mapping[str, Any]):
     grip_tension_N: float | None = None
     contact_time_s: float | None = None
     grasp_time_s: float | None = None
+    actuation: str | None = None
+    grip_pressure_Pa: float | None = None
+    peak_pressure_Pa: float | None = None
     error: str | None = None
     run_config_hash: str | None = None
 
@@ -132,7 +145,8 @@ class TrialRecord(Mapping[str, Any]):
             v = getattr(self, f.name)
             if f.name in (*OUTCOME_FIELDS, *APPROACH_FIELDS) and self.status != "ok":
                 continue
-            if f.name in ("error", "run_config_hash", *CONTROLLER_FIELDS, *APPROACH_FIELDS) and v is None:
+            if f.name in ("error", "run_config_hash", *CONTROLLER_FIELDS, *APPROACH_FIELDS, *PNEUMATIC_FIELDS,
+                          "close_command_rad") and v is None:
                 continue
             out[f.name] = v
         return out

@@ -32,11 +32,13 @@ from gripper.core.provenance import versions
 from gripper.core.units import DEG
 from gripper.experiments.approach import ApproachPlan, fingertip_palm_z, plan_approach
 from gripper.experiments.controller import GripController, check_set_point
+from gripper.experiments.pressure_controller import PressureController
 from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
 from gripper.experiments.record import TrialRecord
 from gripper.objects.grasp_object import GraspObject
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement
+from gripper.pneumatic.sensing import PressureSensor
 from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.damage import damage_measure
 from gripper.sim.depth import DepthCamera, NoObjectSeen, estimate_object, palm_depth_points
@@ -61,7 +63,7 @@ def sample_placement(obj: GraspObject, noise: TrialNoise, seed: int, index: int)
 def grasp_height(p: GripperParams, obj: GraspObject, proto: GraspProtocol) -> float:
     """Palm-face height above the floor at which the fingers close [m], by the catalogue rule
     (``protocol.approach = "catalogue"``: from the object's size)."""
-    return max(p.finger.length + proto.tip_clearance, obj.height + proto.palm_clearance)
+    return max(p.finger_length + proto.tip_clearance, obj.height + proto.palm_clearance)
 
 
 def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
@@ -107,13 +109,17 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
         frame_sink.start(m, probe)
         rec.frame_sink = frame_sink
     try:
-        sensor = ServoSensor(m, p, sensing, np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 1]))
+        sensor_rng = np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 1])
+        sensor = (PressureSensor(m, p, rng=sensor_rng) if p.pneumatic_fingers
+                  else ServoSensor(m, p, sensing, sensor_rng))
         eye = Eye(camera, np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 2]))
         outcome = {"status": "ok", **run_protocol(m, d, p, obj, proto, probe, rec, sensor, eye)}
     except NoObjectSeen as e:
         outcome = {"status": "no_object", "success": None, "failed_phase": None, "error": str(e)}
     except SimulationUnstable as e:
         outcome = {"status": "error", "success": None, "failed_phase": None, "error": str(e)}
+    if p.pneumatic_fingers:
+        outcome.update(actuation="pneumatic", peak_pressure_Pa=rec.peak_pressure)
     return TrialRecord(
         **head, **outcome,
         peak_total_force_N=rec.peak_total, peak_finger_force_N=rec.peak_finger.tolist(),
@@ -132,7 +138,8 @@ class Eye:
         return estimate_object(palm_depth_points(m, d, palm, self.camera, self.rng), self.camera)
 
 
-def run_protocol(m, d, p, obj, proto, probe, rec, sensor: ServoSensor | None = None, eye: Eye | None = None) -> dict:
+def run_protocol(m, d, p, obj, proto, probe, rec, sensor: ServoSensor | PressureSensor | None = None,
+                 eye: Eye | None = None) -> dict:
     """Run the grasp protocol on a built scene; ``sensor`` reads the servos (default: a
     :class:`ServoSensor` with the default sensing and a fixed generator), ``eye`` is the palm
     camera (default: :class:`DepthCamera` with a fixed generator).
@@ -142,7 +149,8 @@ def run_protocol(m, d, p, obj, proto, probe, rec, sensor: ServoSensor | None = N
     """
     stepper = ChunkStepper(m, d)
     if sensor is None:
-        sensor = ServoSensor(m, p, ServoSensing(), np.random.default_rng(0))
+        sensor = (PressureSensor(m, p, rng=np.random.default_rng(0)) if p.pneumatic_fingers
+                  else ServoSensor(m, p, ServoSensing(), np.random.default_rng(0)))
     if eye is None:
         eye = Eye(DepthCamera(), np.random.default_rng(0))
     try:
@@ -157,9 +165,13 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
     home = p.lift.home_height
     travel = float(m.actuator_ctrlrange[probe.servo[0], 1])
     close_rate = proto.close_speed / p.servo.spool_radius  # rad/s of spool
-    grip = None
+    grip: GripController | PressureController | None = None
     check_set_point(proto, p)
-    if proto.policy == "controller":
+    if p.pneumatic_fingers:  # the drive is the regulator: a pressure set-point, ramped and held
+        close_rate = proto.pressure_rate
+        grip = PressureController(m, probe.servo, sensor, grip_pressure=proto.grip_pressure, rate=close_rate)
+        servo_cmd = grip.goals
+    elif proto.policy == "controller":
         kp, _ = p.servo.datasheet.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
                                            damping_ratio=p.servo.damping_ratio)
         grip = GripController(m, probe.servo, sensor, grip_tension=proto.grip_tension, close_rate=close_rate,
@@ -293,12 +305,16 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
         "success": failed is None, "failed_phase": failed, "lift_height_m": lift_height, "slip_m": slip,
         "max_slip_m": max_slip[0], "damaged": damaged, "damage_measure": damage,
         "damage_limit": obj.damage_limit,
-        "close_command_rad": close_cmd if grip is None else float(grip.goal.max()),
+        "close_command_rad": (close_cmd if grip is None else None if p.pneumatic_fingers
+                              else float(grip.goal.max())),
         "policy": proto.policy, "servo_at_grasp": sensed["grasp"], "servo_at_hold_end": sensed["hold"],
         "grasp": plan.grasp, "palm_xy_m": [xc, yc],
         "depth_estimate": estimate.to_dict() if estimate is not None else None,
     }
-    if grip is not None:
+    if isinstance(grip, PressureController):
+        out.update(grip_pressure_Pa=grip.grip_pressure,
+                   grasp_time_s=None if math.isnan(grip.grip_time) else grip.grip_time)
+    elif grip is not None:
         out.update(grip_tension_N=grip.grip_tension,
                    contact_time_s=float(np.nanmin(grip.contact_time)) if np.isfinite(grip.contact_time).any()
                    else None,

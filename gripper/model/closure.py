@@ -160,7 +160,7 @@ def tune_closure_limits(spec: mujoco.MjSpec, p: GripperParams, model: mujoco.MjM
     """Set each hinge limit's ``solref`` and ``solimp`` from the closure model; ``model`` is
     ``spec`` compiled (for the inverse inertias). Edits ``spec`` in place."""
     hinges = [j for j in spec.joints if j.type == mujoco.mjtJoint.mjJNT_HINGE and "_hinge" in j.name]
-    if not hinges:
+    if not hinges or p.pneumatic_fingers:  # the pneumatic finger has no cuts to close
         return
     ids = np.array([model.joint(j.name).id for j in hinges])
     inv_w = model.dof_invweight0[model.jnt_dofadr[ids]]

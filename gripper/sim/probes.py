@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from gripper.model.names import finger_name
+from gripper.model.names import drive_name, finger_name
 from gripper.objects.grasp_object import GraspObject
 from gripper.objects.scene_objects import CONTENTS_BODY, OBJECT_BODY
 
@@ -37,7 +37,9 @@ class ObjectProbe:
 
     def __post_init__(self):
         m = self.model
-        self.servo = np.array([m.actuator(f"{finger_name(k)}_servo").id for k in range(self.n_fingers)])
+        # each finger's drive actuator: the servo (cable) or the chamber's regulator (pneumatic)
+        self.pneumatic = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, drive_name(0, True)) >= 0
+        self.servo = np.array([m.actuator(drive_name(k, self.pneumatic)).id for k in range(self.n_fingers)])
         self.lift_x = m.actuator("lift_x").id
         self.lift_z = m.actuator("lift_z").id
         self.palm = m.body("palm").id
@@ -53,8 +55,14 @@ class ObjectProbe:
             name = m.body(m.geom_bodyid[g]).name
             if name == OBJECT_BODY or name.startswith(CONTENTS_BODY):
                 self.object_geom[g] = True
-        self.tension_adr = np.array([m.sensor_adr[m.sensor(f"{finger_name(k)}_cable_tension").id]
-                                     for k in range(self.n_fingers)])
+        if self.pneumatic:  # no cable; the chamber's moment sensor over its gain is the pressure
+            self.tension_adr = np.zeros(0, dtype=int)
+            self.moment_adr = np.array([m.sensor_adr[m.sensor(f"{drive_name(k, True)}_moment").id]
+                                        for k in range(self.n_fingers)])
+            self.moment_gain = m.actuator_gainprm[self.servo, 0].copy()
+        else:
+            self.tension_adr = np.array([m.sensor_adr[m.sensor(f"{finger_name(k)}_cable_tension").id]
+                                         for k in range(self.n_fingers)])
         self.flex = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_FLEX, OBJECT_BODY) if self.obj.is_flex else -1
         if self.flex >= 0:
             a, n = m.flex_vertadr[self.flex], m.flex_vertnum[self.flex]
@@ -160,6 +168,7 @@ class PeakRecorder:
         self.peak_total = 0.0
         self.peak_finger = np.zeros(probe.n_fingers)
         self.peak_tension = 0.0
+        self.peak_pressure = 0.0
         self.peak_strain = 0.0
         self.frame_sink = None  # optional: receives (phase, states, sensordata) of every chunk
 
@@ -170,7 +179,11 @@ class PeakRecorder:
         per_finger = self.probe.finger_forces(d)
         self.peak_finger = np.maximum(self.peak_finger, per_finger)
         self.peak_total = max(self.peak_total, float(per_finger.sum()))
-        self.peak_tension = max(self.peak_tension, float(sensordata[:, self.probe.tension_adr].max()))
+        if self.probe.pneumatic:
+            pressure = sensordata[:, self.probe.moment_adr] / self.probe.moment_gain
+            self.peak_pressure = max(self.peak_pressure, float(pressure.max()))
+        else:
+            self.peak_tension = max(self.peak_tension, float(sensordata[:, self.probe.tension_adr].max()))
         if self.probe.obj.kind not in STRAIN_DAMAGE_KINDS:
             return
         if states is not None and self.probe.q_adr is not None:
