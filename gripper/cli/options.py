@@ -8,7 +8,7 @@ from __future__ import annotations
 from gripper.bench.defaults import DEFAULT_WORKERS
 from gripper.bench.execution import check_scheduler
 from gripper.cli.inputs import WORKERS_MAX, field_option, names, number
-from gripper.core.params import GripperParams
+from gripper.core.params import ACTUATIONS, GripperParams
 from gripper.experiments.protocol import APPROACHES, GRASP_CHOICES, POLICIES, GraspProtocol, TrialNoise
 
 EXIT_BAD_INPUT = 2
@@ -31,7 +31,13 @@ def design(args, *, simulates: bool = True) -> GripperParams:
 
 def _read_params(args) -> GripperParams:
     p = GripperParams.load(args.params) if args.params else GripperParams().validate()
+    actuation = getattr(args, "actuation", None)
+    if actuation is not None:
+        p = p.replace(actuation=p.actuation.replace(kind=actuation)).validate()
     springs = getattr(args, "springs", "calibrated")
+    if p.pneumatic_fingers and (springs != "calibrated" or getattr(args, "calibration", None)):
+        raise ValueError("--springs/--calibration: set the cable finger's springs; the pneumatic finger's come "
+                         "from its own calibration ('gripper calibrate --reference actuator')")
     if springs != "calibrated":
         if getattr(args, "calibration", None):
             raise ValueError("--springs: give either --springs or --calibration, not both")
@@ -69,8 +75,8 @@ def check_runner(args) -> None:
 
 def protocol_and_noise(args):
     proto = GraspProtocol(close_command_scale=args.close_scale, release=args.release, policy=args.policy,
-                          grip_tension=args.grip_tension, approach=args.approach, grasp=args.grasp,
-                          centre=not args.no_centre).validate()
+                          grip_tension=args.grip_tension, grip_pressure=args.grip_pressure, approach=args.approach,
+                          grasp=args.grasp, centre=not args.no_centre).validate()
     noise = TrialNoise(xy=args.noise, mass_frac=args.mass_noise, friction_frac=args.friction_noise).validate()
     return proto, noise
 
@@ -94,6 +100,8 @@ def with_protocol(p):
                         "(default %(default)s)")
     field_option(p, "--grip-tension", GraspProtocol, "grip_tension",
                  "the controller's grip set-point: cable tension per finger [N]", metavar="N")
+    field_option(p, "--grip-pressure", GraspProtocol, "grip_pressure",
+                 "the pneumatic gripper's grip set-point: chamber pressure [Pa]", metavar="PA")
     field_option(p, "--close-scale", GraspProtocol, "close_command_scale",
                  "per_object: multiplier on each object's closing command, >1 squeezes harder")
     p.add_argument("--release", action="store_true", help="open the fingers at the end of each trial")
@@ -121,6 +129,9 @@ def with_params(p):
     p.add_argument("--calibration", metavar="FILE",
                    help="calibration file from 'gripper calibrate': its fitted hinge springs "
                         "replace those of the parameters")
+    p.add_argument("--actuation", choices=ACTUATIONS, default=None,
+                   help="the fingers: cable (paper 000's, the default) or pneumatic (paper 001's actuator as a "
+                        "calibrated hinge chain, fed by a proportional regulator); overrides --params")
     p.add_argument("--force-calibration", action="store_true",
                    help="apply --calibration even if it was made for another design")
     from gripper.core.params import SPRING_SETS

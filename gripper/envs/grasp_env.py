@@ -40,12 +40,13 @@ RENDER_ARGUMENTS = {"render_mode": None, "width": 640, "height": 480, "camera": 
 
 def make_config(**kwargs: Any) -> EnvConfig:
     """The validated :class:`EnvConfig` of keyword arguments named as its fields (``objects`` may
-    be "a,b"), plus ``params`` (a GripperParams or a parameter file) and ``calibration``.
+    be "a,b"), plus ``params`` (a GripperParams or a parameter file), ``actuation`` (``"cable"``
+    or ``"pneumatic"``: the fingers, overriding the parameters') and ``calibration``.
 
     Raises:
         ValueError: an unknown argument (naming the allowed ones) or a bad value.
     """
-    allowed = [f.name for f in dataclasses.fields(EnvConfig)] + ["calibration"]
+    allowed = [f.name for f in dataclasses.fields(EnvConfig)] + ["calibration", "actuation"]
     unknown = sorted(set(kwargs) - set(allowed))
     if unknown:
         raise ValueError(f"{ENV_ID}: unknown argument {', '.join(unknown)}; allowed: "
@@ -61,6 +62,9 @@ def make_config(**kwargs: Any) -> EnvConfig:
         params = GripperParams()
     elif not isinstance(params, GripperParams):
         params = GripperParams.load(params)
+    actuation = kwargs.pop("actuation", None)
+    if actuation is not None:  # the fingers: "cable" or "pneumatic" (GripperParams.actuation)
+        params = params.replace(actuation=params.actuation.replace(kind=actuation)).validate()
     calibration = kwargs.pop("calibration", None)
     if calibration is not None:
         from gripper.calibration.calfile import apply_calibration

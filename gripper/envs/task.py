@@ -35,10 +35,11 @@ from gripper.envs.config import (
 )
 from gripper.experiments.protocol import TrialNoise, is_held
 from gripper.experiments.trial import sample_placement
-from gripper.model.names import finger_name
+from gripper.model.names import FingerNames, finger_name
 from gripper.objects.grasp_object import GraspObject
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement
+from gripper.pneumatic.sensing import PressureSensor
 from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.damage import running_damage_measure
 from gripper.sim.probes import STRAIN_DAMAGE_KINDS, ObjectProbe
@@ -49,8 +50,21 @@ CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
 
 
 def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
-    """Observation layout: name -> (start index, size, unit)."""
-    nf, nh = cfg.n_fingers, cfg.params.finger.n_segments - 1
+    """Observation layout: name -> (start index, size, unit). The pneumatic gripper's
+    (``params.actuation.kind = "pneumatic"``) has no cable or servo: its regulators' pressures
+    instead, as fractions of the highest set-point (``pneumatic.pressure_max``)."""
+    nf = cfg.n_fingers
+    if cfg.params.pneumatic_fingers:
+        ns = cfg.params.pneumatic.n_segments
+        parts = [("hinge_angle", nf * ns, "rad"), ("hinge_velocity", nf * ns, "rad/s"),
+                 ("chamber_pressure", nf, "-"), ("pressure_setpoint", nf, "-"),
+                 ("palm_height", 1, "m"), ("palm_setpoint", 3, "m"),
+                 ("object_pos_rel_palm", 3, "m"), ("object_quat", 4, "-"),
+                 ("pad_force", nf * ns, "N"), ("finger_object_force", nf, "N"),
+                 # what the regulators report (gripper.pneumatic.sensing: quantised, noisy)
+                 ("sensed_pressure", nf, "-")]
+        return _layout(parts)
+    nh = cfg.params.finger.n_segments - 1
     parts = [("hinge_angle", nf * nh, "rad"), ("hinge_velocity", nf * nh, "rad/s"),
              ("cable_shortening", nf, "m"), ("cable_tension", nf, "N"), ("servo_angle", nf, "rad"),
              ("servo_setpoint", nf, "rad"),
@@ -61,6 +75,10 @@ def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
              # what the servos report (gripper.servo.sensing: quantised, noisy)
              ("sensed_servo_position", nf, "rad"), ("sensed_servo_current", nf, "A"),
              ("sensed_spool_tension", nf, "N")]
+    return _layout(parts)
+
+
+def _layout(parts: list[tuple[str, int, str]]) -> dict[str, tuple[int, int, str]]:
     out, i = {}, 0
     for name, size, unit in parts:
         out[name] = (i, size, unit)
@@ -78,25 +96,29 @@ class Scene:
         m = self.model
         self.probe = ObjectProbe(m, obj, cfg.n_fingers)
         nf = cfg.n_fingers
-        hinges = [f"{finger_name(k)}_hinge{j}" for k in range(nf) for j in range(2, p.finger.n_segments + 1)]
+        self.pneumatic = p.pneumatic_fingers
+        n_seg = p.pneumatic.n_segments if self.pneumatic else p.finger.n_segments
+        hinges = [h for k in range(nf) for h in FingerNames(finger_name(k), n_seg, self.pneumatic).hinges]
         self.hinge_q = np.array([m.jnt_qposadr[m.joint(h).id] for h in hinges])
         self.hinge_v = np.array([m.jnt_dofadr[m.joint(h).id] for h in hinges])
-        reels = [m.joint(f"{finger_name(k)}_reel").id for k in range(nf)]
-        self.reel_q = np.array([m.jnt_qposadr[j] for j in reels])
+        reels = [] if self.pneumatic else [m.joint(f"{finger_name(k)}_reel").id for k in range(nf)]
+        self.reel_q = np.array([m.jnt_qposadr[j] for j in reels], dtype=int)
         self.lift_q = {a: m.jnt_qposadr[m.joint(a).id] for a in ("lift_x", "lift_y", "lift_z")
                        if mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, a) >= 0}
         sadr = lambda name: m.sensor_adr[m.sensor(name).id]  # noqa: E731
-        self.tension = np.array([sadr(f"{finger_name(k)}_cable_tension") for k in range(nf)])
+        self.tension = (np.zeros(0, dtype=int) if self.pneumatic else
+                        np.array([sadr(f"{finger_name(k)}_cable_tension") for k in range(nf)]))
         self.pads = np.array([sadr(f"{finger_name(k)}_seg{j}_pad") for k in range(nf)
-                              for j in range(1, p.finger.n_segments + 1)])
-        self.servo = self.probe.servo
-        self.sensor = ServoSensor(m, p, ServoSensing())
+                              for j in range(1, n_seg + 1)])
+        self.servo = self.probe.servo  # each finger's drive: its servo, or its chamber's regulator
+        self.sensor: ServoSensor | PressureSensor = (PressureSensor(m, p) if self.pneumatic
+                                                     else ServoSensor(m, p, ServoSensing()))
         self.spool = p.servo.spool_radius
         self.act_lift = {a: m.actuator(a).id for a in self.lift_q}
         self.lift_act_ids = np.array(list(self.act_lift.values()))
         self.home = p.lift.home_height
-        self.z_min = p.finger.length + TIP_FLOOR_CLEARANCE - self.home
-        self.z_start = obj.height + p.finger.length + START_CLEARANCE - self.home
+        self.z_min = p.finger_length + TIP_FLOOR_CLEARANCE - self.home
+        self.z_start = obj.height + p.finger_length + START_CLEARANCE - self.home
         self.z_max = 0.0  # the lift's home: palm face at params.lift.home_height
         self.servo_max = float(m.actuator_ctrlrange[self.servo[0], 1])
         self.free_q = (m.jnt_qposadr[m.joint("object_free").id]
@@ -175,7 +197,9 @@ class Scene:
         if self.cfg.palm_control == "velocity":
             self._velocity.append((np.array(palm), self.cfg.palm_speed * dt, np.array(lo), np.array(hi)))
         if self.cfg.servo_control == "velocity":
-            self._velocity.append((np.asarray(self.servo), self.params.servo.slew_rate * dt, 0.0, self.servo_max))
+            # the servo at its slew rate; the regulator's set-point at the grasp protocol's ramp
+            rate = HELD.pressure_rate if self.pneumatic else self.params.servo.slew_rate
+            self._velocity.append((np.asarray(self.servo), rate * dt, 0.0, self.servo_max))
 
 
 class SceneSet:
@@ -273,6 +297,12 @@ def observe(ep: EpisodeState, sens: np.ndarray) -> np.ndarray:
     setpoint = np.zeros(3)
     setpoint[s.palm_xy_slot] = d.ctrl[s.palm_xy_act]
     setpoint[2] = s.home + d.ctrl[s.act_lift["lift_z"]]
+    if isinstance(s.sensor, PressureSensor):
+        full = s.servo_max
+        pr = s.sensor.read(sens, ep.sensor_rng)
+        return np.concatenate([
+            q[s.hinge_q], d.qvel[s.hinge_v], s.sensor.true_pressure(sens) / full, d.ctrl[s.servo] / full,
+            palm[2:3], setpoint, pos, quat, sens[s.pads], s.probe.finger_forces(d), pr.pressure / full])
     reel = q[s.reel_q]
     r = s.sensor.read(sens, ep.sensor_rng)
     return np.concatenate([
@@ -289,7 +319,7 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     height = float(obj_pos[2] - ep.start_pos[2])
     rel = obs[struct["object_pos_rel_palm"][0]:struct["object_pos_rel_palm"][0] + 3]
     # scalar math on 3-vectors: numpy's per-call cost dominates at this size
-    reach = math.dist(rel, (0.0, 0.0, -0.5 * s.params.finger.length))  # to the grasp point
+    reach = math.dist(rel, (0.0, 0.0, -0.5 * s.params.finger_length))  # to the grasp point
     i = struct["finger_object_force"][0]
     finger = obs[i:i + cfg.n_fingers]  # each finger's normal force on the object, all element faces
     touching = float(np.count_nonzero(finger > CONTACT_FORCE)) / cfg.n_fingers
