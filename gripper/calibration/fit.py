@@ -432,17 +432,28 @@ def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
 
 def _settled_targets(record: BendingRecord, static_idx: np.ndarray
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Angles (B2..Bn, from B1) and tip of the record near rest at each static sample: the
-    mean over the last quarter of its hold (from the previous static sample), which averages
-    measurement noise instead of taking one sample; and how many samples each mean took."""
+    """Angles (B2..Bn, from B1) and tip of the record at rest at each static sample, and the
+    weight of each (as many samples as the last quarter of its hold).
+
+    A record with its static points at rest (``record.has_rest``: the reference relaxed each
+    hold's end until its own residual was small) gives those. Otherwise (records before 0.15.0)
+    the mean over the last quarter of the hold stands in for rest, which it is not where the
+    finger still rings at the end of its hold."""
     rel = record.element_angles_deg - record.element_angles_deg[:, :1]
     bounds = np.concatenate([[-1], record.static])
     ang, tip, count = [], [], []
     for j in static_idx:
-        prev = bounds[int(np.searchsorted(record.static, j))]
+        level = int(np.searchsorted(record.static, j))
+        prev = bounds[level]
         lo = j - max(0, (j - prev) // 4)
-        ang.append(np.nanmean(rel[lo:j + 1, 1:], axis=0))
-        tip.append(np.nanmean(record.tip_xz_m[lo:j + 1], axis=0))
+        if record.has_rest:
+            assert record.rest_element_angles_deg is not None and record.rest_tip_xz_m is not None
+            rest = record.rest_element_angles_deg[level]
+            ang.append(rest[1:] - rest[0])
+            tip.append(record.rest_tip_xz_m[level])
+        else:
+            ang.append(np.nanmean(rel[lo:j + 1, 1:], axis=0))
+            tip.append(np.nanmean(record.tip_xz_m[lo:j + 1], axis=0))
         count.append(j + 1 - lo)
     return np.array(ang), np.array(tip), np.array(count, dtype=float)
 
@@ -485,12 +496,18 @@ def simulate_record(sim: HingeSimulator, k: np.ndarray, c: np.ndarray, record: B
 
 
 def _static_point_error(record: BendingRecord, model: BendingRecord, i: int,
-                        length: float) -> dict:
+                        length: float, *, at_rest: bool = False) -> dict:
     """Static point ``i`` of ``record`` against ``model`` there: tension, tip error as a
-    fraction of ``length`` and relative error of the bending angle (None where not finite)."""
+    fraction of ``length`` and relative error of the bending angle (None where not finite).
+    ``at_rest``: against the record's static point at rest where it has one."""
     j = int(record.static[i])
-    tip_err = float(np.linalg.norm(model.tip_xz_m[j] - record.tip_xz_m[j]))
-    bend_ref = float(record.element_angles_deg[j, -1] - record.element_angles_deg[j, 0])
+    if at_rest and record.has_rest:
+        assert record.rest_element_angles_deg is not None and record.rest_tip_xz_m is not None
+        ref_tip, ref_ang = record.rest_tip_xz_m[i], record.rest_element_angles_deg[i]
+    else:
+        ref_tip, ref_ang = record.tip_xz_m[j], record.element_angles_deg[j]
+    tip_err = float(np.linalg.norm(model.tip_xz_m[j] - ref_tip))
+    bend_ref = float(ref_ang[-1] - ref_ang[0])
     bend_err = abs(float(model.element_angles_deg[j, -1]) - bend_ref) / max(abs(bend_ref), 1e-9)
     return {"level": i, "tension_N": float(record.tension_N[j]),
             "tip_error_frac": tip_err / length if math.isfinite(tip_err) else None,
@@ -498,14 +515,15 @@ def _static_point_error(record: BendingRecord, model: BendingRecord, i: int,
 
 
 def settled_metrics(record: BendingRecord, settled: BendingRecord, p: GripperParams) -> dict:
-    """The fitted hinge finger at rest at each static point's tension, against the record there.
+    """The fitted hinge finger at rest at each static point's tension, against the record there
+    (at rest too, where the record has its rest points: equilibrium against equilibrium).
 
     Keys: ``tip_rms_frac`` (of the finger length) over all static points, and ``levels`` with,
     per point, the tension, the tip error as a fraction of the finger length and the relative
     error of the bending angle. For a reference record this is the calibrated model's static
     accuracy, whatever the transient fit did with the damping.
     """
-    levels = [_static_point_error(record, settled, i, p.finger.length)
+    levels = [_static_point_error(record, settled, i, p.finger.length, at_rest=True)
               for i in range(len(record.static))]
     tips = [lv["tip_error_frac"] for lv in levels if lv["tip_error_frac"] is not None]
     return {"tip_rms_frac": math.sqrt(sum(t * t for t in tips) / len(tips)) if tips else None,

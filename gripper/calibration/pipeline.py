@@ -39,6 +39,7 @@ from gripper.core.atomic import write_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import DEFAULT_CALIBRATION_FILE, GripperParams
 from gripper.references.continuum import BendingRecord, ReferenceConfig, run_reference
+from gripper.references.continuum_checks import REST_TOL_DEG
 
 REFERENCE_KINDS = ("continuum", "fmbs")
 # Files of a calibration folder that the committed default keeps (reference.json is the record
@@ -97,7 +98,8 @@ def _tension_for_compliance(p: GripperParams, compliance_deg_per_N: float) -> fl
 
 def default_settings(kind: str = "continuum", fmbs=None) -> dict:
     """The reference and fit settings ``calibrate`` uses when given none (its cache key)."""
-    out = {"kind": kind, "reference": ReferenceConfig().to_dict(), "fit": asdict(FitConfig())}
+    out = {"kind": kind, "reference": ReferenceConfig().to_dict(), "fit": asdict(FitConfig()),
+           "rest_tol_deg": REST_TOL_DEG}
     if kind == "fmbs":
         from gripper.references.fmbs import FmbsConfig
 
@@ -176,7 +178,8 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
         with tempfile.TemporaryDirectory(dir=out.parent, prefix=f".{out.name}.") as tmp_name:
             tmp = Path(tmp_name)
             if data is None:
-                settings = {"kind": kind, "reference": ref_cfg.to_dict(), "fit": asdict(fit_cfg)}
+                settings = {"kind": kind, "reference": ref_cfg.to_dict(), "fit": asdict(fit_cfg),
+                            "rest_tol_deg": REST_TOL_DEG}
                 if kind == "fmbs":
                     from gripper.references.fmbs import FmbsConfig
 
@@ -212,11 +215,11 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
                         run_cfg = replace(run_cfg, tension_max=fmbs_tension_max(p, fmbs))
                     say(f"flexible multibody run ({fmbs.reading} reading, "
                         f"{run_cfg.tension_max:.3g} N) ...")
-                    record = run_fmbs(p, run_cfg, fmbs)
+                    record = run_fmbs(p, run_cfg, fmbs, at_rest=True)
                 else:
                     say(f"continuum reference run (flex finger, {run_cfg.tension_max:.3g} N, "
-                        f"several minutes) ...")
-                    record = run_reference(p, run_cfg)
+                        f"then each level relaxed to rest; several minutes) ...")
+                    record = run_reference(p, run_cfg, at_rest=True)
                 source = kind
                 settings["run"] = {"modulus_factor": run_cfg.modulus_factor,
                                    "tension_max": run_cfg.tension_max}
@@ -231,7 +234,7 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
             if data is None:
                 metrics["reference_wall_time_s"] = record.wall_time_s
             settings["settings_hash"] = settings_hash({k: v for k, v in settings.items()
-                                                       if k in ("kind", "reference", "fit", "fmbs")})
+                                                       if k in ("kind", "reference", "fit", "fmbs", "rest_tol_deg")})
             cal = Calibration(design_hash=design_hash(p), source=source,
                               stiffness=tuple(float(v) for v in result.stiffness),
                               damping=tuple(float(v) for v in result.damping),

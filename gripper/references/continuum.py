@@ -156,9 +156,15 @@ class BendingRecord:
         element_angles_deg: rotation of each element B1..Bn about the hinge axis from its
             straight pose, positive curling towards the grasping face [deg], shape (n, n_seg).
         tip_xz_m: tip point (neutral axis at the distal face) x and z [m], shape (n, 2).
-        static: indices of the quasi-static samples, shape (k,).
+        static: indices of the quasi-static samples (the ends of the holds), shape (k,).
         wall_time_s: wall-clock time of the simulation [s].
         warnings: MuJoCo warnings counted over the run.
+        rest_element_angles_deg, rest_tip_xz_m: the static points **at rest**, shape (k, n_seg)
+            and (k, 2): each hold's end state relaxed at its tension until its own residual is
+            small (:func:`gripper.references.continuum_checks.rest_points`); None for records
+            whose static points are at rest already (bench data) or that predate them.
+        rest_moved_deg: each rest point's residual, the bending angle's move over the last half
+            second of its relaxation [deg], shape (k,).
     """
 
     t: np.ndarray
@@ -169,6 +175,14 @@ class BendingRecord:
     static: np.ndarray
     wall_time_s: float = 0.0
     warnings: int = 0
+    rest_element_angles_deg: np.ndarray | None = None
+    rest_tip_xz_m: np.ndarray | None = None
+    rest_moved_deg: np.ndarray | None = None
+
+    @property
+    def has_rest(self) -> bool:
+        """Whether the record carries its static points at rest (see the attributes)."""
+        return self.rest_element_angles_deg is not None and self.rest_tip_xz_m is not None
 
     def to_json_dict(self) -> dict:
         return {k: (v.tolist() if isinstance(v, np.ndarray) else v)
@@ -357,8 +371,10 @@ class ReferenceFinger:
 
 
 def run_reference(params: GripperParams | None = None,
-                  config: ReferenceConfig | None = None) -> BendingRecord:
-    """Run the reference bending test (see the module docstring).
+                  config: ReferenceConfig | None = None, *, at_rest: bool = False) -> BendingRecord:
+    """Run the reference bending test (see the module docstring). ``at_rest``: also relax each
+    hold's end to rest (:func:`gripper.references.continuum_checks.rest_points`; ``gripper
+    calibrate`` does, a minute or two per level).
 
     Raises:
         ValueError: invalid parameters or config, or a tension that closes a cut: the reference
@@ -368,13 +384,22 @@ def run_reference(params: GripperParams | None = None,
         SimulationUnstable: MuJoCo warned (e.g. the effective-metric solve did not converge)
             or the state became non-finite.
     """
-    return run_bending_record(ReferenceFinger(params, config))
+    ref = ReferenceFinger(params, config)
+    if not at_rest:
+        return run_bending_record(ref)
+    from gripper.references.continuum_checks import relaxation_config, with_rest_points
+
+    snaps: list = []
+    record = run_bending_record(ref, snaps)
+    relax = relaxation_config(ref.cfg)
+    return with_rest_points(record, lambda: ReferenceFinger(ref.p, relax), snaps)
 
 
-def run_bending_record(ref: ReferenceFinger) -> BendingRecord:
+def run_bending_record(ref: ReferenceFinger, snapshots: list | None = None) -> BendingRecord:
     """The tension staircase of ``ref.cfg`` on a built reference finger (the continuum body or
     paper 000's flexible multibody model, :mod:`gripper.references.fmbs`); see
-    :func:`run_reference` for what it raises."""
+    :func:`run_reference` for what it raises. ``snapshots``: a list that receives ``qpos`` at
+    each static sample (the ends of the holds), for relaxing them to rest."""
     closed_limit = math.radians(ref.p.finger.closure_angle_deg + CLOSED_CUT_MARGIN_DEG)
     cfg = ref.cfg
     m, d = ref.model, ref.data
@@ -382,12 +407,15 @@ def run_bending_record(ref: ReferenceFinger) -> BendingRecord:
     times = np.arange(n_steps + 1) * cfg.timestep
     tensions = tension_schedule(times, cfg.tension_max, cfg.n_levels, cfg.duration)
     rows = []
+    states = []
     t0 = time.perf_counter()
     for step in range(n_steps + 1):
         pos = ref.node_positions()
         length = ref.apply_cable(float(tensions[step]), pos)
         if step % cfg.sample_every == 0 or step == n_steps:
             angles, tip = ref.measure(pos)
+            if snapshots is not None:
+                states.append(d.qpos.copy())
             rows.append((d.time, tensions[step], (ref.path_length0 - length) / ref.length0,
                          angles, tip))
             hinge = np.diff(angles)
@@ -407,13 +435,16 @@ def run_bending_record(ref: ReferenceFinger) -> BendingRecord:
     check_stable(m, d, "reference bending test")
     wall = time.perf_counter() - t0
     t = np.array([r[0] for r in rows])
+    static = plateau_indices(t, cfg.n_levels, cfg.duration)
+    if snapshots is not None:
+        snapshots.extend(states[i] for i in static)
     return BendingRecord(
         t=t,
         tension_N=np.array([r[1] for r in rows]),
         r=np.array([r[2] for r in rows]),
         element_angles_deg=np.degrees(np.array([r[3] for r in rows])),
         tip_xz_m=np.array([r[4] for r in rows]),
-        static=plateau_indices(t, cfg.n_levels, cfg.duration),
+        static=static,
         wall_time_s=wall,
         warnings=int(sum(w.number for w in d.warning)),
     )

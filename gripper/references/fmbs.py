@@ -292,9 +292,10 @@ class FmbsFinger(ReferenceFinger):
 
 
 def run_fmbs(params: GripperParams | None = None, config: ReferenceConfig | None = None,
-             fmbs: FmbsConfig | None = None) -> BendingRecord:
+             fmbs: FmbsConfig | None = None, *, at_rest: bool = False) -> BendingRecord:
     """Run paper 000's flexible multibody bending test (tension staircase of ``config``; its
     ``tension_max`` is replaced by :func:`fmbs_tension_max` unless ``config`` is given).
+    ``at_rest``: also relax each hold's end to rest, as :func:`gripper.references.continuum.run_reference`.
 
     Raises:
         ValueError: invalid settings, or a tension that closes a cut (as the continuum
@@ -304,7 +305,14 @@ def run_fmbs(params: GripperParams | None = None, config: ReferenceConfig | None
     p = (params or GripperParams()).validate()
     f = (fmbs or FmbsConfig()).validate()
     cfg = config or ReferenceConfig(tension_max=fmbs_tension_max(p, f))
-    return run_bending_record(FmbsFinger(p, cfg, f))
+    if not at_rest:
+        return run_bending_record(FmbsFinger(p, cfg, f))
+    from gripper.references.continuum_checks import relaxation_config, with_rest_points
+
+    snaps: list = []
+    record = run_bending_record(FmbsFinger(p, cfg, f), snaps)
+    relax = relaxation_config(cfg)
+    return with_rest_points(record, lambda: FmbsFinger(p, relax, f), snaps)
 
 
 __all__ = ["FmbsConfig", "FmbsFinger", "READINGS", "fmbs_tension_max", "run_fmbs"]
