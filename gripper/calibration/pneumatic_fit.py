@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import io
 import json
-import math
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path

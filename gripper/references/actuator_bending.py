@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -71,7 +72,8 @@ class ActuatorRecord:
     @classmethod
     def from_json_dict(cls, data: dict) -> ActuatorRecord:
         arrays = ("pressures", "tip", "angles_deg", "line", "sag_tip")
-        return cls(**{k: (np.asarray(v, dtype=float) if k in arrays else v) for k, v in data.items()})
+        values: dict[str, Any] = {k: (np.asarray(v, dtype=float) if k in arrays else v) for k, v in data.items()}
+        return cls(**values)
 
 
 def _neutral_line(points: np.ndarray, thickness: float) -> tuple[np.ndarray, np.ndarray]:

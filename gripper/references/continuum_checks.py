@@ -25,7 +25,6 @@ from gripper.references.continuum import (
 from gripper.references.finger_mesh import MeshResolution
 from gripper.sim.stability import SimulationUnstable, check_stable
 
-
 # deg: a static point is at rest when its bending angle moves less than this over half a second
 # of the relaxation (0.02°: a fiftieth of the fit's 1° angle scale; static_bend's default)
 REST_TOL_DEG = 0.02
