@@ -243,7 +243,7 @@ def test_auto_tension_with_a_given_reference(tmp_path, monkeypatch):
     class Ran(Exception):
         pass
 
-    def capture(p, cfg):
+    def capture(p, cfg, **kwargs):
         raise Ran(cfg.tension_max)
 
     monkeypatch.setattr(pipeline, "run_reference", capture)

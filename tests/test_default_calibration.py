@@ -53,6 +53,20 @@ def test_committed_fit_meets_the_accuracy_lines():
     assert m["tip_rms_frac"] <= 0.03
     for h in m["held_out"]:
         assert h["tip_error_frac"] <= 0.05
+    # the fitted finger at rest against the reference at rest, at every level: the same bound
+    for level in m["settled"]["levels"]:
+        assert level["tip_error_frac"] <= 0.03, level
+
+
+def test_committed_reference_static_points_are_at_rest():
+    """The committed reference record carries its static points relaxed to rest, each accepted
+    on its own residual (the bending angle's move over the last half second)."""
+    from gripper.references.continuum_checks import REST_TOL_DEG
+
+    rec = json.loads((DEFAULT_CALIBRATION_FILE.parent / "reference.json").read_text())
+    moved = rec["rest_moved_deg"]
+    assert len(moved) == len(rec["static"]) == len(rec["rest_tip_xz_m"])
+    assert max(moved) < REST_TOL_DEG
 
 
 def test_paper_springs_stay_available():
@@ -226,3 +240,19 @@ def test_settings_hash_is_stable():
     s = default_settings()
     assert settings_hash(s) == settings_hash(json.loads(json.dumps(s)))
     assert design_hash(GripperParams()) == COMMITTED.design_hash
+
+
+@pytest.mark.slow
+def test_rest_points_are_the_equilibria():
+    """A level's end-of-hold state relaxed to rest lands where the same finger relaxed from
+    straight does (an elastic body has one rest shape per load): coarse mesh, 0.05 N."""
+    from gripper.references.continuum import ReferenceConfig, run_reference
+    from gripper.references.continuum_checks import static_bend
+
+    mesh = MeshResolution(split="kuhn6")
+    cfg = ReferenceConfig(mesh=mesh, tension_max=0.05, n_levels=2, duration=0.4)
+    rec = run_reference(None, cfg, at_rest=True)
+    fresh = static_bend(None, mesh, tension=0.05, rest_tol_deg=0.005)
+    rest = rec.rest_element_angles_deg[-1]
+    assert rest[-1] - rest[0] == pytest.approx(fresh["bending_angle_deg"], abs=0.1)
+    assert np.allclose(rec.rest_tip_xz_m[-1], fresh["tip_xz_m"], atol=2e-4)

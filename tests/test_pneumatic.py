@@ -146,3 +146,11 @@ def test_environment_with_the_pneumatic_gripper():
     assert np.array_equal(a, b)
     i, n, _ = struct["pressure_setpoint"]
     assert a[-1, i:i + n].max() > 0  # the set-points moved
+
+
+def test_docs_show_the_committed_report():
+    from gripper.calibration.pneumatic_fit import DOCS_REPORT
+
+    if not DOCS_REPORT.parent.is_dir():
+        pytest.skip("an installed package: no docs folder")
+    assert DOCS_REPORT.read_bytes() == (PNEUMATIC_CALIBRATION_FILE.parent / "report.png").read_bytes()

@@ -8,6 +8,9 @@
 - ``<!-- depth-camera-table -->``: the palm depth camera's fields, likewise;
 - ``<!-- rl-hyperparams -->``: the RL baselines' hyper-parameters (``gripper.rl.hyperparams``);
 - ``<!-- version -->``: the package's version;
+- ``<!-- pneumatic-finger-table -->``, ``<!-- regulator-table -->``, ``<!-- pressure-sensing-table -->``,
+  ``<!-- pneumatic-calibration -->``: the pneumatic gripper's fields, regulator datasheets, pressure
+  sensing and committed calibration;
 - ``<!-- env-arguments -->``: the environment's arguments (``EnvConfig``'s fields and the rest);
 - ``<!-- actuator-table -->``: paper 001's actuator's parameters (``PneumaticActuator``);
 - ``<!-- actuator-convergence -->``, ``<!-- actuator-check -->``, ``<!-- actuator-studies -->``: its
@@ -53,7 +56,9 @@ def _fields_table(classes, number_format: str = "") -> str:
     lines = ["| field | default | unit | allowed | source |", "|---|---|---|---|---|"]
     for cls, prefix in classes:
         for name, spec in field_specs(cls).items():
-            lines.append(f"| {prefix}.{name} | {getattr(cls(), name):{number_format}} | {spec.unit} "
+            value = getattr(cls(), name)
+            shown = format(value, number_format) if isinstance(value, int | float) and not isinstance(value, bool) else value
+            lines.append(f"| {prefix}.{name} | {shown} | {spec.unit} "
                          f"| {spec.allowed()} | {spec.source} |")
     return "\n".join(lines)
 
@@ -96,6 +101,8 @@ def _env_arguments() -> str:
              f"| reward_weights | {DEFAULT_REWARD_WEIGHTS} | - | any of these keys, finite | overrides some dense "
              "reward weights |",
              "| params | GripperParams() | - | a GripperParams or a .toml/.json parameter file | the design |",
+             "| actuation | None | - | cable or pneumatic | the fingers, overriding params' (the pneumatic "
+             "gripper's observation and action: below) |",
              "| calibration | None | - | a calibration JSON from gripper calibrate | its fitted hinge springs "
              "replace those of params |"]
     meaning = {"render_mode": "rgb_array, depth_array or human (needs a display)", "width": "image width [px]",
@@ -108,6 +115,46 @@ def _actuator_table() -> str:
     from gripper.references.pneumatic_params import PneumaticActuator
 
     return _fields_table(((PneumaticActuator, "actuator"),))
+
+
+def _pneumatic_finger_table() -> str:
+    from gripper.core.params import Actuation, PneumaticFinger
+
+    return _fields_table(((Actuation, "actuation"), (PneumaticFinger, "pneumatic")), ".4g")
+
+
+def _regulator_table() -> str:
+    from gripper.pneumatic.regulator import REGULATOR_PRESETS
+
+    lines = ["| preset | range [kPa] | supply max [kPa] | response time [s] | linearity [% F.S.] | "
+             "monitor accuracy [% F.S.] | source |", "|---|---|---|---|---|---|---|"]
+    for ds in REGULATOR_PRESETS.values():
+        lines.append(f"| {ds.name} | {ds.pressure_min / 1e3:g}-{ds.pressure_max / 1e3:g} | {ds.supply_max / 1e3:g} | "
+                     f"{ds.response_time:g} | {100 * ds.linearity:g} | {100 * ds.monitor_accuracy:g} | {ds.source} |")
+    return "\n".join(lines)
+
+
+def _pressure_sensing_table() -> str:
+    from gripper.pneumatic.sensing import PressureSensing
+
+    return _fields_table(((PressureSensing, "pressure_sensing"),), ".4g")
+
+
+def _pneumatic_calibration() -> str:
+    """The committed pneumatic calibration: fitted values and the tip error per pressure."""
+    from gripper.core.params import PNEUMATIC_CALIBRATION_FILE
+
+    cal = json.loads(PNEUMATIC_CALIBRATION_FILE.read_text())
+    m = cal["metrics"]
+    held = {h["pressure_kPa"] for h in m["held_out"]}
+    lines = ["| pressure [kPa] | tip error [% of length] |", "|---|---|"]
+    for row in m["per_pressure"]:
+        tag = " (held out)" if row["pressure_kPa"] in held else ""
+        lines.append(f"| {row['pressure_kPa']:g}{tag} | {100 * row['tip_error_frac']:.2f} |")
+    lines.append(f"| sag (lying, 0 kPa) | {100 * m['sag_tip_error_frac']:.2f} |")
+    fitted = ", ".join(f"{k} = {v:.4g}" for k, v in cal["fitted"].items())
+    return (f"Fitted ({m['n_segments']} segments, {m['fit_wall_time_s']:.1f} s): {fitted} (SI units). "
+            f"Tip RMS over the fitted pressures {100 * m['tip_rms_frac']:.2f} % of the length.\n\n" + "\n".join(lines))
 
 
 def _actuator_results() -> dict:
@@ -192,7 +239,9 @@ MARKERS = {"<!-- rl-hyperparams -->": _rl_hyperparams, "<!-- version -->": _vers
            "<!-- protocol-table -->": _protocol_table, "<!-- sensing-table -->": _sensing_table,
            "<!-- depth-camera-table -->": _depth_camera_table,
            "<!-- actuator-convergence -->": _actuator_convergence, "<!-- actuator-check -->": _actuator_check,
-           "<!-- actuator-studies -->": _actuator_studies}
+           "<!-- actuator-studies -->": _actuator_studies, "<!-- pneumatic-finger-table -->": _pneumatic_finger_table,
+           "<!-- regulator-table -->": _regulator_table, "<!-- pressure-sensing-table -->": _pressure_sensing_table,
+           "<!-- pneumatic-calibration -->": _pneumatic_calibration}
 
 
 def on_page_markdown(markdown: str, **kwargs) -> str:

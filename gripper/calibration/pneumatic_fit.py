@@ -294,6 +294,8 @@ def write_pneumatic_report(path: Path, record: ActuatorRecord, fit: PneumaticFit
 
 
 PNEUMATIC_FILES = ("calibration.json", "reference.json", "report.png")
+# The docs' copy of the committed report (written by --write-default in a source checkout).
+DOCS_REPORT = PNEUMATIC_CALIBRATION_FILE.parents[4] / "docs" / "pneumatic_calibration.png"
 
 
 def calibrate_pneumatic(out_dir: str | Path, params: GripperParams | None = None, *,
@@ -323,6 +325,11 @@ def write_default_pneumatic_calibration(on_progress=None) -> dict:
     (``gripper calibrate --reference actuator --write-default``), from the default parameters'
     segment count, into ``gripper/data/calibration/pneumatic/``."""
     cal, _, _ = calibrate_pneumatic(PNEUMATIC_CALIBRATION_FILE.parent, GripperParams(), on_progress=on_progress)
+    docs = DOCS_REPORT
+    if docs.parent.is_dir():  # a source checkout: the docs show the report (a test compares the two)
+        from gripper.core.atomic import write_atomic
+
+        write_atomic(docs, lambda tmp: Path(tmp).write_bytes((PNEUMATIC_CALIBRATION_FILE.parent / "report.png").read_bytes()))
     return cal
 
 

@@ -16,10 +16,10 @@ Two load cases, both on the studies' mesh (``STUDY_REFINEMENT``; its convergence
   towards its neutral layer under its own weight): the bending stiffness on its own, which the
   inflation cannot separate from the pressure's moment (both scale the bend alike).
 
-Example:
+Example (about a minute and a half; the tip (x, z) at 250 kPa):
     >>> from gripper.references.actuator_bending import run_actuator_reference
-    >>> rec = run_actuator_reference()        # doctest: +SKIP  (about 1 minute)
-    >>> rec.tip[-1]                           # doctest: +SKIP  (x, z at 250 kPa [m])
+    >>> rec = run_actuator_reference()        # doctest: +SKIP
+    >>> rec.tip[-1]                           # doctest: +SKIP
 """
 
 from __future__ import annotations
