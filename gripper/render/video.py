@@ -1,6 +1,7 @@
 """Video of one scripted grasp trial: states recorded at the video rate, rendered afterwards.
 
-During the trial a :class:`FrameRecorder` keeps the full physics state (and the cable tensions)
+During the trial a :class:`FrameRecorder` keeps the full physics state (and the cable tensions, or
+the pneumatic gripper's chamber pressures)
 whenever simulated time passes the next frame time; the states come from the rollout's own
 per-step output, so recording costs no extra simulation. After the trial one
 :class:`gripper.render.renderer.SceneRenderer` renders every kept state, an optional text overlay adds
@@ -40,7 +41,10 @@ class FrameRecorder:
 
     def start(self, model, probe) -> None:
         self.model = model
-        self.tension_adr = probe.tension_adr
+        # the drive's reading per finger: cable tension [N], or chamber pressure [kPa] (pneumatic)
+        self.pneumatic = bool(getattr(probe, "pneumatic", False))
+        self.tension_adr = probe.moment_adr if self.pneumatic else probe.tension_adr
+        self.scale = 1e-3 / probe.moment_gain if self.pneumatic else 1.0
         self._next = 0.0
 
     def add(self, phase: str, states: np.ndarray, sensordata: np.ndarray) -> None:
@@ -48,7 +52,7 @@ class FrameRecorder:
             if row[0] + 1e-9 >= self._next:
                 self.states.append(row.copy())
                 self.phases.append(phase)
-                self.tensions.append(sensordata[i, self.tension_adr].copy())
+                self.tensions.append(sensordata[i, self.tension_adr] * self.scale)
                 self._next += 1.0 / self.fps
 
 
@@ -128,8 +132,9 @@ def render_frames(rec: FrameRecorder, *, width: int = 640, height: int = 480, ca
             mujoco.mj_forward(m, d)
             img = renderer.render(d)
             if overlay:
-                tens = " ".join(f"{t:4.1f}" for t in rec.tensions[i])
-                img = overlay_lines(img, [f"{rec.phases[i]:<8} t = {d.time:5.2f} s", f"cable tension [N]: {tens}"])
+                tens = " ".join(f"{t:4.1f}" if not rec.pneumatic else f"{t:4.0f}" for t in rec.tensions[i])
+                label = "chamber pressure [kPa]" if rec.pneumatic else "cable tension [N]"
+                img = overlay_lines(img, [f"{rec.phases[i]:<8} t = {d.time:5.2f} s", f"{label}: {tens}"])
             frames[i] = img
             progress.update(i + 1)
     finally:

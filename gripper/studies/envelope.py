@@ -36,7 +36,7 @@ SHAPES = {"sphere": "rigid_sphere", "cylinder": "rigid_cylinder", "box": "rigid_
 ENVELOPE_HEIGHT = 0.060
 # A point is held when at least this fraction of its trials succeed.
 HELD_FRACTION = 2 / 3
-KEYS = ("shapes", "sizes", "masses", "frictions", "trials", "seed", "grip_tension")
+KEYS = ("shapes", "sizes", "masses", "frictions", "trials", "seed", "grip_tension", "grip_pressure")
 
 
 @dataclass(frozen=True)
@@ -50,6 +50,7 @@ class Envelope:
     trials: int = 3
     seed: int = 0
     grip_tension: float = GRIP_TENSION
+    grip_pressure: float = GraspProtocol().grip_pressure  # the pneumatic gripper's set-point [Pa]
     params: GripperParams = field(default_factory=GripperParams)
 
     def validate(self) -> Envelope:
@@ -76,11 +77,13 @@ class Envelope:
         try:
             check_set_point(self.protocol(), self.params)
         except ValueError as e:
-            raise fail("grip_tension", str(e).split(": ", 1)[-1]) from None
+            key = "grip_pressure" if self.params.pneumatic_fingers else "grip_tension"
+            raise fail(key, str(e).split(": ", 1)[-1]) from None
         return self
 
     def protocol(self) -> GraspProtocol:
-        return GraspProtocol(policy="controller", grip_tension=self.grip_tension).validate()
+        return GraspProtocol(policy="controller", grip_tension=self.grip_tension,
+                             grip_pressure=self.grip_pressure).validate()
 
     def points(self) -> list[tuple[str, float, float, float]]:
         """(shape, size, mass, friction) in the order records are written."""
@@ -95,7 +98,8 @@ class Envelope:
 
         return {"shapes": list(self.shapes), "sizes": list(self.sizes), "masses": list(self.masses),
                 "frictions": list(self.frictions), "trials": self.trials, "seed": self.seed,
-                "grip_tension": self.grip_tension, "params": self.params.to_dict(),
+                "grip_tension": self.grip_tension, "grip_pressure": self.grip_pressure,
+                "params": self.params.to_dict(),
                 "protocol": self.protocol().to_dict(), "noise": TrialNoise().to_dict(),
                 "versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")}}
 
@@ -203,6 +207,7 @@ def summarize(records: list[dict], env: Envelope) -> dict:
     pts = env.points()
     frac_of = held_fractions(records)
     out: dict = {"grip_tension_N": env.grip_tension, "held_fraction": HELD_FRACTION, "shapes": {},
+                 "actuation": env.params.actuation.kind, "grip_pressure_Pa": env.grip_pressure,
                  "errors": sum(r["status"] == "error" for r in records),
                  "no_object": sum(r["status"] == "no_object" for r in records),
                  "warnings": sum(r["warnings"] for r in records), "envelope_hash": env.hash()}

@@ -16,6 +16,7 @@ from gripper.cli.options import (
     with_runner,
 )
 from gripper.core.atomic import check_output_dir
+from gripper.core.params import ACTUATIONS, GripperParams
 from gripper.experiments.protocol import (
     GraspProtocol,
 )
@@ -39,6 +40,10 @@ def add(sub) -> None:
     seed_option(ev, help="base seed; default: the file's")
     field_option(ev, "--grip-tension", GraspProtocol, "grip_tension", "set-point [N]; default: the file's, "
                  "else the protocol's", metavar="N", default=None)
+    field_option(ev, "--grip-pressure", GraspProtocol, "grip_pressure", "the pneumatic gripper's set-point [Pa]; "
+                 "default: the file's, else the protocol's", metavar="PA", default=None)
+    ev.add_argument("--actuation", choices=ACTUATIONS, default="cable",
+                    help="the fingers: cable (default) or pneumatic (docs/pneumatic_gripper.md)")
     with_runner(ev)
     ev.set_defaults(func=run)
 
@@ -49,11 +54,16 @@ def run(args) -> int:
     check_output_dir(args.out, files=RUN_FILES)
     lists = {key: (names(v, "--shapes") if key == "shapes" else numbers(v, f"--{key}", lo=0, lo_open=True))
              for key in ("shapes", "sizes", "masses", "frictions") if (v := getattr(args, key)) is not None}
-    env = load_envelope(args.file, trials=args.trials, seed=args.seed, grip_tension=args.grip_tension, **lists)
+    p = GripperParams()
+    p = p.replace(actuation=p.actuation.replace(kind=args.actuation)).validate()
+    env = load_envelope(args.file, trials=args.trials, seed=args.seed, grip_tension=args.grip_tension,
+                        grip_pressure=args.grip_pressure, params=p, **lists)
     check_runner(args)
     summary = run_envelope(env, args.out, workers=args.workers, scheduler=args.scheduler,
                            progress=not args.no_progress)
-    print(f"capability envelope at a grip of {summary['grip_tension_N']:g} N "
+    grip = (f"{summary['grip_pressure_Pa'] / 1e3:g} kPa" if env.params.pneumatic_fingers
+            else f"{summary['grip_tension_N']:g} N")
+    print(f"capability envelope at a grip of {grip} "
           f"(held: at least {summary['held_fraction']:.0%} of {env.trials} trials)")
     for shape, s in summary["shapes"].items():
         rng = s["gripping_range_m"]
