@@ -154,3 +154,15 @@ def test_docs_show_the_committed_report():
     if not DOCS_REPORT.parent.is_dir():
         pytest.skip("an installed package: no docs folder")
     assert DOCS_REPORT.read_bytes() == (PNEUMATIC_CALIBRATION_FILE.parent / "report.png").read_bytes()
+
+
+def test_a_pneumatic_study_refuses_the_cable_responses(tmp_path):
+    from gripper.studies.study_file import load_study
+
+    study = tmp_path / "s.toml"
+    study.write_text('[study]\nname = "x"\ndesign = "one_at_a_time"\n[fixed]\n"actuation.kind" = "pneumatic"\n'
+                     '[vary]\n"pneumatic.n_segments" = [4]\n[responses]\nbending = { r_max = 0.45 }\n')
+    with pytest.raises(ValueError, match="responses.bending: drives the cable finger's servo"):
+        load_study(study)
+    shipped = load_study("pneumatic_segments")
+    assert shipped.base.pneumatic_fingers
