@@ -18,10 +18,15 @@ EXIT_FAILED = 1  # the system failed a write (a full disk): not the input's faul
 EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report a command ended by Ctrl-C
 
 
-def design(args, *, simulates: bool = True) -> GripperParams:
+def design(args, *, simulates: bool = True, cable_only: str | None = None) -> GripperParams:
     """The parameters the options give; ``simulates``: also check, before any work and any file,
-    that the design can be stepped at all (:func:`gripper.sim.preflight.check_design`)."""
+    that the design can be stepped at all (:func:`gripper.sim.preflight.check_design`).
+    ``cable_only``: the command (e.g. ``"gripper bend"``) tests the cable finger only, and refuses
+    the pneumatic gripper in one line."""
     p = _read_params(args)
+    if cable_only and p.pneumatic_fingers:
+        raise ValueError(f"--actuation: {cable_only} tests the cable finger (its cable, servo and cuts); the "
+                         "pneumatic gripper runs bench, envelope, video, check, study and the environment")
     if simulates:
         from gripper.sim.preflight import check_design
 

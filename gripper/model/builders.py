@@ -290,6 +290,12 @@ def set_options(spec: mujoco.MjSpec, p: GripperParams) -> None:
         "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST,
         "rk4": mujoco.mjtIntegrator.mjINT_RK4,
     }[p.sim.integrator]
+    if p.pneumatic_fingers:
+        # The pneumatic chain's short end segments on stiff hinges ring at some 300 Hz: springs
+        # integrated explicitly (implicitfast, implicit, rk4) diverged at 1 ms under the random-
+        # command check (at 35-76 ms); MuJoCo's discrete integrator, implicit in the springs (the
+        # trials' integrator), is stable there and at the trials' 2 ms.
+        spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
     spec.option.gravity = [0, 0, -p.sim.gravity]
     spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
     spec.option.impratio = 10  # stiff friction, as Menagerie grippers use, against object slip

@@ -47,10 +47,10 @@ def run(args) -> int:
     if args.figure:
         from gripper.render.figures import bending_figure
 
-        res = bending_figure(args.figure, cfg, design(args))
+        res = bending_figure(args.figure, cfg, design(args, cable_only="gripper bend"))
         print(f"wrote {args.figure}", file=sys.stderr if args.json else sys.stdout)
     else:
-        res = run_bending_test(cfg, design(args))
+        res = run_bending_test(cfg, design(args, cable_only="gripper bend"))
     if args.json:
         json.dump(res.to_json_dict(), sys.stdout)
         sys.stdout.write("\n")

@@ -37,7 +37,7 @@ def add(sub) -> None:
 def run(args) -> int:
     from gripper.experiments.crush import crush_test
 
-    params = design(args)
+    params = design(args, cable_only="gripper crush")
     for name in object_specs(args.objects):
         res = crush_test(name, args.depth, speed=args.speed, hold_s=args.hold, params=params)
         if args.json:

@@ -48,7 +48,7 @@ def run(args) -> int:
     protos = [base.replace(grip_tension=g) for g in grips]
     if args.plot:
         check_output_file(args.plot, "--plot", (".png",))
-    params = design(args)
+    params = design(args, cable_only="gripper pullout")
     results = []
     for name in objects:
         for proto in protos:

@@ -20,7 +20,7 @@ def add(sub) -> None:
 def run(args) -> int:
     from gripper.servo.datasheet_check import measure_servo
 
-    m = measure_servo(design(args))
+    m = measure_servo(design(args, cable_only="gripper servo"))
     print(f"servo preset {m.datasheet.name}: {m.datasheet.description}")
     print(f"{'figure':<24} {'model':>10} {'datasheet':>10} {'error':>8}")
     for name, model, sheet in m.rows():

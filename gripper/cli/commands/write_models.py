@@ -23,11 +23,15 @@ def add(sub) -> None:
 def run(args) -> int:
     from gripper.sim.model_files import GRIPPER_FILE, SCENE_FILE, default_model_dir, write_model_files
 
+    p = design(args, simulates=False)
+    if p.pneumatic_fingers and not args.out:
+        raise ValueError("--out: give a folder for the pneumatic gripper's files (models/soft_gripper is the "
+                         "cable gripper's)")
     target = args.out or default_model_dir()
     if target is None:
         raise ValueError("--out: give a folder (outside a source checkout there is no models/ to refresh, "
                          "and the installed package's copy is not written to)")
     out = check_output_dir(target, files=(GRIPPER_FILE, SCENE_FILE, "README.md"))
-    for path in write_model_files(out, design(args, simulates=False)):
+    for path in write_model_files(out, p):
         print(f"wrote {path}")
     return 0
