@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v5``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v6``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v5")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v6")``.
 """
 
 from __future__ import annotations
@@ -232,7 +232,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v5", **kwargs)``: the fields of
+    ``gymnasium.make("gripper:SoftGripperGrasp-v6", **kwargs)``: the fields of
     :class:`gripper.envs.config.EnvConfig` (each declared once there, with its unit, range and
     reason; the table is generated into ``docs/environment.md``), ``params`` (a GripperParams or
     a parameter file), ``calibration`` (a ``gripper calibrate`` file) and the renderer's
@@ -280,10 +280,15 @@ class SoftGripperGraspEnv(gym.Env):
       bricks (``gripper/data/objects/bag.toml``); the pack-in-a-bag of v4 is ``"bag_pack"``.
       Episodes with the bag have other dynamics; the rigid objects, the balloon and the paper
       box, the spaces, rewards and episode rules are unchanged. v4 is no longer registered.
+    - v6, package 0.15.0: the cable fingers' hinge springs are the recalibrated default (the
+      reference's static points relaxed to rest, ``docs/calibration.md``), so every episode has
+      other dynamics; the spaces, rewards and episode rules are unchanged. ``actuation="pneumatic"``
+      is new (the pneumatic gripper, its own spaces: ``docs/pneumatic_gripper.md``). v5 is no
+      longer registered.
 
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v5", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v6", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """
