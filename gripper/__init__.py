@@ -53,6 +53,12 @@ after_import("mujoco", _no_mujoco_log_file)  # when MuJoCo is first imported: no
 # The public API, imported on first use (``import gripper`` stays quick): name -> module.
 _EXPORTS = {
     "GripperParams": "gripper.core.params",
+    "PneumaticFinger": "gripper.core.params",
+    "regulator_datasheet": "gripper.pneumatic.regulator",
+    "PressureSensing": "gripper.pneumatic.sensing",
+    "calibrate_pneumatic": "gripper.calibration.pneumatic_fit",
+    "fit_pneumatic": "gripper.calibration.pneumatic_fit",
+    "run_actuator_reference": "gripper.references.actuator_bending",
     "build_gripper_spec": "gripper.model.builders",
     "build_scene_spec": "gripper.model.builders",
     "build_bending_spec": "gripper.model.builders",
@@ -96,7 +102,8 @@ if TYPE_CHECKING:  # static checkers and IDEs see the real names
     from gripper.calibration.calfile import Calibration, apply_calibration, design_hash
     from gripper.calibration.fit import FitConfig, fit_hinges
     from gripper.calibration.pipeline import calibrate
-    from gripper.core.params import GripperParams
+    from gripper.calibration.pneumatic_fit import calibrate_pneumatic, fit_pneumatic
+    from gripper.core.params import GripperParams, PneumaticFinger
     from gripper.envs.grasp_env import SoftGripperGraspEnv
     from gripper.experiments.crush import crush_test
     from gripper.experiments.protocol import GraspProtocol, TrialNoise
@@ -106,6 +113,9 @@ if TYPE_CHECKING:  # static checkers and IDEs see the real names
     from gripper.objects.grasp_object import GraspObject
     from gripper.objects.library import get_object, mesh_object
     from gripper.objects.scene_objects import Placement
+    from gripper.pneumatic.regulator import regulator_datasheet
+    from gripper.pneumatic.sensing import PressureSensing
+    from gripper.references.actuator_bending import run_actuator_reference
     from gripper.references.continuum import ReferenceConfig, run_reference
     from gripper.render.figures import bending_figure, success_plot
     from gripper.render.video import record_trial_video

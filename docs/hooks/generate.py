@@ -57,7 +57,8 @@ def _fields_table(classes, number_format: str = "") -> str:
     for cls, prefix in classes:
         for name, spec in field_specs(cls).items():
             value = getattr(cls(), name)
-            shown = format(value, number_format) if isinstance(value, int | float) and not isinstance(value, bool) else value
+            numeric = isinstance(value, int | float) and not isinstance(value, bool)
+            shown = format(value, number_format) if numeric else value
             lines.append(f"| {prefix}.{name} | {shown} | {spec.unit} "
                          f"| {spec.allowed()} | {spec.source} |")
     return "\n".join(lines)

@@ -273,7 +273,9 @@ def stale_reasons(cal: Calibration, params: GripperParams | None = None) -> list
 def write_default_calibration(on_progress=None) -> Calibration:
     """Regenerate the default design's committed calibration (``gripper calibrate
     --write-default``): the continuum reference with its mesh convergence, fitted, into
-    ``gripper/data/calibration/default/``. Takes about 6 minutes on 2 cores.
+    ``gripper/data/calibration/default/``. The committed one took 34 minutes on 2 cores with
+    other jobs sharing them (uncontended not measured), most of it relaxing the five static points
+    to rest.
 
     The default springs must not feed their own calibration: the reference and the fit depend
     on finger, material and cable only (the design hash), never on the springs.

@@ -329,7 +329,8 @@ def write_default_pneumatic_calibration(on_progress=None) -> dict:
     if docs.parent.is_dir():  # a source checkout: the docs show the report (a test compares the two)
         from gripper.core.atomic import write_atomic
 
-        write_atomic(docs, lambda tmp: Path(tmp).write_bytes((PNEUMATIC_CALIBRATION_FILE.parent / "report.png").read_bytes()))
+        report = (PNEUMATIC_CALIBRATION_FILE.parent / "report.png").read_bytes()
+        write_atomic(docs, lambda tmp: Path(tmp).write_bytes(report))
     return cal
 
 

@@ -35,7 +35,8 @@ def add(sub) -> None:
                      help="skip the mesh-convergence study and its stiffness correction (quick looks)")
     cal.add_argument("--write-default", action="store_true",
                      help="regenerate the default design's committed calibration in "
-                          "gripper/data/calibration/default (about 6 minutes on 2 cores)")
+                          "gripper/data/calibration/default (34 minutes measured on 2 shared cores, most "
+                          "of it the reference's rest points)")
     cal.add_argument("--write-surrogate", action="store_true",
                      help="regenerate the committed stiffness surrogate of the design studies "
                           "(gripper/data/studies/stiffness_surrogate.json: six convergence studies "
