@@ -92,7 +92,10 @@ def test_teeth_stiffen_as_they_are_squashed():
 
 
 def test_quasi_static_moment_balance():
-    res = run_bending_test(BendingConfig(mode="quasi_static", r_max=0.4, n_points=17))
+    # At rest to the balance's 2 %: the slowest hinge relaxes with c / K = 0.42 s (0.15.0's
+    # springs), so the default band (0.01° per 25 ms chunk) leaves up to 5 % of the smallest free
+    # moment (1e-4 N·m) unbalanced; 0.002° leaves 1 %.
+    res = run_bending_test(BendingConfig(mode="quasi_static", r_max=0.4, n_points=17, settle_band_deg=0.002))
     free = ~res.limit_active & (res.spring_moment_Nm > 1e-4)  # calibrated springs: ~2e-3 N·m/rad
     assert free.sum() > 50
     rel = np.abs(res.spring_moment_Nm - res.cable_moment_Nm)[free] / res.spring_moment_Nm[free]
@@ -137,8 +140,10 @@ def test_teeth_lock_held_at_stall(mode):
     of 8 psi, 55 kPa), which the stall squashes flat."""
     p = GripperParams()
     soft = p.replace(material=p.material.replace(youngs_modulus=0.15 * p.material.youngs_modulus))
-    res = run_bending_test(BendingConfig(mode=mode, r_max=0.6, n_points=201 if mode == "dynamic" else 41),
-                           soft)
+    # dynamic: 3 s, as the heavier damping of 0.15.0's springs (c / K up to 0.42 s) reaches the
+    # stall later than the 2 s default (94.7 % of it at 2 s)
+    res = run_bending_test(BendingConfig(mode=mode, r_max=0.6, n_points=201 if mode == "dynamic" else 41,
+                                         **({"duration": 3.0} if mode == "dynamic" else {})), soft)
     lock = soft.finger.closure_angle_deg + np.degrees(teeth_lock_angle(soft.finger))
     assert res.tension_N.max() > 0.95 * soft.servo.max_cable_tension  # at stall
     assert res.joint_angles_deg.max() > lock - 0.5  # the lock is reached ...

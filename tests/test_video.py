@@ -1,5 +1,6 @@
 """Offscreen video of a trial, the bending montage, the success plot, and bad input."""
 
+import math
 import os
 import subprocess
 import sys
@@ -35,8 +36,8 @@ def test_trial_video_reads_back_with_gripper_in_view(tmp_path):
     n = len(video)
     assert video.shape[1:] == (120, 160, 3)
     assert video.metadata.fps == pytest.approx(20.0)
-    # one frame per 1/fps of simulated time, the first at the first step
-    assert abs(n - res["sim_time_s"] * 20) <= 1.0 and n == res["frames"]
+    # one frame per 1/fps of simulated time, the first at the first step: n = floor(T fps) + 1
+    assert n == math.floor(res["sim_time_s"] * 20 + 1e-9) + 1 and n == res["frames"]
     assert min(f.astype(float).var() for f in video) > 20.0  # no blank frame
     assert np.abs(video[-1].astype(float) - video[0].astype(float)).mean() > 1.0  # the scene moves
 
