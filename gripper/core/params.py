@@ -451,7 +451,7 @@ class PneumaticFinger(Validated):
     spacing).
 
     Attributes:
-        n_segments: rigid segments, the first fixed to the palm (the clamp's zero-length base).
+        n_segments: rigid segments, the first on the root hinge at the clamp (n - 1 inner hinges).
         length, width, height: the actuator's size.
         neutral_height: the neutral layer's mid-plane above the grasping face.
         mass: the actuator's mass.
@@ -462,7 +462,8 @@ class PneumaticFinger(Validated):
         knee_curvature: the curvature at which the stiffening starts.
         moment_per_pascal: the chamber pressure's bending moment per pascal, the same at every
             hinge (a uniform section).
-        damping_ratio: each hinge's damping, as a ratio of critical on its distal segment.
+        damping_ratio: each hinge's damping, as a ratio of critical for its spring on the tip
+            segment's inertia.
         regulator: key of :data:`gripper.pneumatic.regulator.REGULATOR_PRESETS`.
         pressure_max: highest chamber pressure the regulator is set to.
     """

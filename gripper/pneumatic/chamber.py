@@ -4,8 +4,8 @@ proportional regulator (:mod:`gripper.pneumatic.regulator`).
 
 Structure (names ``f{k}_`` for finger k, as the cable finger's):
 
-- ``seg1`` .. ``seg{n}``: a Hencky bar chain. The base ``seg1`` (half a pitch, fixed to the palm:
-  the clamp) and the tip ``seg{n}`` (half a pitch) are half-length, the others a full pitch
+- ``seg1`` .. ``seg{n}``: a Hencky bar chain. The base ``seg1`` (on the root hinge at the clamp)
+  and the tip ``seg{n}`` are half a pitch long, the others a full pitch
   ``length / (n - 1)``, so the n - 1 inner hinges sit at the middle of n - 1 equal parts of the
   length and a uniformly bent chain has its hinge points on the continuum's arc. Each segment is the
   actuator's cross-section (a half-disc back on a rectangle, convex) swept along its length.
@@ -15,10 +15,13 @@ Structure (names ``f{k}_`` for finger k, as the cable finger's):
   a chain with no root hinge misses the tip by 4 % of the length at 250 kPa.
 - hinge ``hinge{j}`` (j = 2..n) on the neutral layer's mid-plane (``PneumaticFinger.hinge_z``), so
   the fabric layer keeps its length however the finger bends; spring EI / pitch; damping
-  ``damping_ratio`` of critical on its distal segment's inertia about the hinge.
+  ``damping_ratio`` of critical for that spring on the tip segment's inertia about its hinge
+  (:func:`hinge_damping`; the root hinge takes the same damping).
 - ``hinge{j}_stiffening``: a one-joint fixed tendon whose spring (``stiffening`` / pitch) acts only
   past the knee angle (``knee_curvature`` x pitch): a dead-band spring (MuJoCo's two-valued
   ``springlength``), the silicone and fibres stiffening as the actuator bends.
+- the model steps with MuJoCo's discrete integrator (``gripper.model.builders.set_options``): the
+  short end segments on stiff hinges diverged under explicit springs at 1 ms.
 - ``chamber``: a fixed tendon summing every hinge angle, driven by the actuator ``chamber``
   (``general``: its activation is the chamber pressure [Pa] behind the regulator's first-order
   lag, ``dyntype="filterexact"``; its gain the pressure's moment per pascal), so every hinge
