@@ -538,7 +538,8 @@ class SimOptions(Validated):
 
     Attributes:
         timestep: physics step.
-        integrator: MuJoCo integrator.
+        integrator: MuJoCo integrator (the pneumatic gripper always takes MuJoCo's discrete
+            integrator, implicit in its stiff hinge springs: ``gripper.model.builders.set_options``).
         gravity: gravitational acceleration along -z.
     """
 
