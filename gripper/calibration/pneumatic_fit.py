@@ -215,8 +215,8 @@ def fit_pneumatic(record: ActuatorRecord, actuator: PneumaticActuator | None = N
                                                                                              strict=True)],
         "sag_tip_error_frac": float(np.linalg.norm(sag - record.sag_tip) / L),
         "per_pressure": [{"pressure_kPa": float(k), "tip_error_frac": float(e)} for k, e in zip(kpa, err, strict=True)],
-        "at_bounds": [k for k, v in zip(FIT_PARAMETERS, x, strict=True)
-                      if min(abs(v - lo[FIT_PARAMETERS.index(k)]), abs(v - hi[FIT_PARAMETERS.index(k)])) < 1e-6],
+        "at_bounds": [k for k, v, a, b in zip(FIT_PARAMETERS, x, lo, hi, strict=True)
+                      if min(v - a, b - v) < 1e-6],
         "n_segments": p.pneumatic.n_segments,
         "fit_wall_time_s": wall,
     }

@@ -109,9 +109,7 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
         frame_sink.start(m, probe)
         rec.frame_sink = frame_sink
     try:
-        sensor_rng = np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 1])
-        sensor = (PressureSensor(m, p, rng=sensor_rng) if p.pneumatic_fingers
-                  else ServoSensor(m, p, sensing, sensor_rng))
+        sensor = drive_sensor(m, p, sensing, np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 1]))
         eye = Eye(camera, np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 2]))
         outcome = {"status": "ok", **run_protocol(m, d, p, obj, proto, probe, rec, sensor, eye)}
     except NoObjectSeen as e:
@@ -125,6 +123,12 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
         peak_total_force_N=rec.peak_total, peak_finger_force_N=rec.peak_finger.tolist(),
         peak_cable_tension_N=rec.peak_tension, warnings=int(sum(w.number for w in d.warning)),
         sim_time_s=float(d.time), wall_time_s=time.perf_counter() - wall0)
+
+
+def drive_sensor(m, p: GripperParams, sensing: ServoSensing, rng: np.random.Generator
+                 ) -> ServoSensor | PressureSensor:
+    """What the fingers' drives report: the servos (``sensing``) or the pressure regulators."""
+    return PressureSensor(m, p, rng=rng) if p.pneumatic_fingers else ServoSensor(m, p, sensing, rng)
 
 
 class Eye:
@@ -149,8 +153,7 @@ def run_protocol(m, d, p, obj, proto, probe, rec, sensor: ServoSensor | Pressure
     """
     stepper = ChunkStepper(m, d)
     if sensor is None:
-        sensor = (PressureSensor(m, p, rng=np.random.default_rng(0)) if p.pneumatic_fingers
-                  else ServoSensor(m, p, ServoSensing(), np.random.default_rng(0)))
+        sensor = drive_sensor(m, p, ServoSensing(), np.random.default_rng(0))
     if eye is None:
         eye = Eye(DepthCamera(), np.random.default_rng(0))
     try:

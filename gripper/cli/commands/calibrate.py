@@ -134,7 +134,7 @@ def _run_actuator(args) -> int:
     )
 
     say = lambda m: print(m, file=sys.stderr)  # noqa: E731
-    if args.data or args.reference != "actuator" or args.mesh_scale != 1 or args.tension_max is not None:
+    if args.data or args.mesh_scale != 1 or args.tension_max is not None:
         raise ValueError("--reference actuator: takes no --data, --mesh-scale or --tension-max (the reference is "
                          "the finite-element actuator on the studies' mesh)")
     if args.write_default:
