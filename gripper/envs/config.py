@@ -43,15 +43,44 @@ CONTACT_FORCE = 0.05
 # Length scale of the reach reward [m]: 1 - tanh(d / REACH_SCALE) falls from 0.52 at the
 # benchmark's grasp pose over the block (d = 26 mm) to 0.06 at the start (d = 88 mm).
 REACH_SCALE = 0.05
+# The dense reward's weights. Since v7 they are v6's (reach 1, lift 2, success 5, damage 10,
+# action 0.01) divided by 8, so that the best step pays 1 (reach + lift + success) and returns
+# stay within a few hundred: the scale a default PPO or SAC expects without reward normalisation
+# (the optimum is unchanged, the reward only rescaled).
 DEFAULT_REWARD_WEIGHTS = {
-    "reach": 1.0,     # times 1 - tanh(distance between the grasp point and the object / REACH_SCALE)
+    "reach": 0.125,   # times 1 - tanh(distance between the grasp point and the object / REACH_SCALE)
     # fraction of fingers pressing on the object: 0 by default, since paying for touch taught PPO
     # to touch with half-closed fingers during the descent and stop there (docs/environment.md)
     "contact": 0.0,
-    "lift": 2.0,      # object rise above its start / success height, clipped to [0, 1]
-    "success": 5.0,   # per control step at which the grasp counts as held
-    "damage": 10.0,   # once, when the object is damaged
-    "action": 0.01,   # per unit squared action norm
+    "lift": 0.25,     # object rise above its start / success height, clipped to [0, 1]
+    "success": 0.625,  # per control step at which the grasp counts as held
+    "damage": 1.25,   # once, when the object is damaged
+    "action": 0.00125,  # per unit squared action norm
+}
+
+# Observation scales (``scale_observations``, since v7): each part of the observation is
+# divided by its characteristic magnitude, so that every entry is of order 1, as a network with
+# default initialisation expects (the raw parts span newtons, metres and radians per second,
+# four orders of magnitude apart). Part name -> (scale in the part's unit, the reason).
+OBSERVATION_SCALES: dict[str, tuple[float, str]] = {
+    "hinge_angle": (1.0, "rad: hinge angles are 0-1 rad in a grasp"),
+    "hinge_velocity": (10.0, "rad/s: the hinges swing at up to 26 rad/s when a grasp snaps"),
+    "cable_shortening": (0.02 * math.pi, "m: the cable reeled in over the servo's travel (20 mm spool, π rad)"),
+    "cable_tension": (50.0, "N: a stalled servo pulls the cable with about 51 N (scripted grasp)"),
+    "servo_angle": (math.pi, "rad: the servo's travel"),
+    "servo_setpoint": (math.pi, "rad: the servo's travel"),
+    "chamber_pressure": (1.0, "-: already a fraction of the highest set-point"),
+    "pressure_setpoint": (1.0, "-: already a fraction of the highest set-point"),
+    "palm_height": (0.1, "m: the palm travels between 0.1 and 0.25 m above the floor"),
+    "palm_setpoint": (0.1, "m: as palm_height (x and y within ±0.02 m)"),
+    "object_pos_rel_palm": (0.1, "m: the object is within a finger length (0.1 m) of the palm in a grasp"),
+    "object_quat": (1.0, "-: a unit quaternion"),
+    "pad_force": (1.0, "N: a pad (tooth top) reads 0-0.2 N in the scripted grasps"),
+    "finger_object_force": (5.0, "N: a finger presses 1-20 N on the block or the cylinder"),
+    "sensed_servo_position": (math.pi, "rad: the servo's travel"),
+    "sensed_servo_current": (1.0, "A: a stalled servo draws about 1.3 A (scripted grasp)"),
+    "sensed_spool_tension": (50.0, "N: as cable_tension"),
+    "sensed_pressure": (1.0, "-: already a fraction of the highest set-point"),
 }
 
 
@@ -87,6 +116,8 @@ class EnvConfig(Validated):
                                source="servo actions as velocities (integrated) or set-points")
     frame_skip: int = param(10, "-", ge=1, le=500, integer=True,
                             source="physics steps (2 ms) per control step: a 20 ms control period")
+    scale_observations: bool = param(True, "-", source="divide each observation part by its "
+                                     "characteristic magnitude (OBSERVATION_SCALES), as networks expect")
     reward_type: str = param("dense", "-", choices=("dense", "sparse"), source="see Rewards")
     reward_weights: dict = field(default_factory=lambda: dict(DEFAULT_REWARD_WEIGHTS))
     terminate_on_success: bool = param(False, "-", source="end the episode once the grasp is held")

@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v6``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v7``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v6")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v7")``.
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from gripper.envs.task import (
     EpisodeState,
     SceneSet,
     evaluate,
+    observation_divisor,
     observation_structure,
     observe,
     start_episode,
@@ -232,7 +233,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v6", **kwargs)``: the fields of
+    ``gymnasium.make("gripper:SoftGripperGrasp-v7", **kwargs)``: the fields of
     :class:`gripper.envs.config.EnvConfig` (each declared once there, with its unit, range and
     reason; the table is generated into ``docs/environment.md``), ``params`` (a GripperParams or
     a parameter file), ``calibration`` (a ``gripper calibrate`` file) and the renderer's
@@ -288,7 +289,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v6", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v7", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """
@@ -306,6 +307,8 @@ class SoftGripperGraspEnv(gym.Env):
         self.render_mode, self.width, self.height, self.camera = render_mode, width, height, camera
         self.metadata = {**self.metadata, "render_fps": int(round(1.0 / self.config.control_period))}
         self.observation_structure, self.observation_space, self.action_space = make_spaces(self.config)
+        # observation = physical value / divisor (``scale_observations``); times it: SI units
+        self.observation_divisor = observation_divisor(self.config)
         self._scenes = SceneSet(self.config)
         self._stepper = BatchStepper(nthread=0)
         self._ep: EpisodeState | None = None
@@ -317,7 +320,7 @@ class SoftGripperGraspEnv(gym.Env):
     def reset(self, *, seed: int | None = None, options: dict | None = None):
         super().reset(seed=seed)
         self._ep = start_episode(self._scenes, self.np_random)
-        obs = observe(self._ep, self._ep.data.sensordata)
+        obs = observe(self._ep, self._ep.data.sensordata) / self.observation_divisor
         self._ep.last_obs = obs
         return obs.copy(), {"object": self._ep.scene.obj.name, "is_success": False,
                             "placement": vars(self._ep.placement).copy()}
@@ -333,9 +336,10 @@ class SoftGripperGraspEnv(gym.Env):
         if err is not None:
             obs, reward, terminated, info = unstable_result(ep, err)
             return obs, reward, terminated, False, info
-        obs = observe(ep, sens)
+        raw = observe(ep, sens)
+        obs = raw / self.observation_divisor
         ep.last_obs = obs
-        reward, terminated, info = evaluate(ep, obs, sens, action, self.config, self.observation_structure)
+        reward, terminated, info = evaluate(ep, raw, sens, action, self.config, self.observation_structure)
         if self.render_mode == "human":
             self.render()
         return obs.copy(), reward, terminated, False, info

@@ -25,6 +25,7 @@ from gripper.envs.config import (
     CONTACT_FORCE,
     HELD,
     IDENTITY_QUAT,
+    OBSERVATION_SCALES,
     REACH_SCALE,
     START_CLEARANCE,
     TIP_FLOOR_CLEARANCE,
@@ -76,6 +77,15 @@ def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
              ("sensed_servo_position", nf, "rad"), ("sensed_servo_current", nf, "A"),
              ("sensed_spool_tension", nf, "N")]
     return _layout(parts)
+
+
+def observation_divisor(cfg: EnvConfig) -> np.ndarray:
+    """What each observation entry is divided by before it is returned: its part's scale
+    (:data:`gripper.envs.config.OBSERVATION_SCALES`) with ``scale_observations``, else 1."""
+    out = []
+    for name, (_, size, _) in observation_structure(cfg).items():
+        out += [OBSERVATION_SCALES[name][0] if cfg.scale_observations else 1.0] * size
+    return np.array(out)
 
 
 def _layout(parts: list[tuple[str, int, str]]) -> dict[str, tuple[int, int, str]]:

@@ -1,7 +1,7 @@
-"""Native vector environment of ``SoftGripperGrasp-v6``: N simulations stepped together by one
+"""Native vector environment of ``SoftGripperGrasp-v7``: N simulations stepped together by one
 ``mujoco.rollout`` call per control step, on MuJoCo's own thread pool.
 
-Created by ``gymnasium.make_vec("gripper:SoftGripperGrasp-v6", num_envs=N,
+Created by ``gymnasium.make_vec("gripper:SoftGripperGrasp-v7", num_envs=N,
 vectorization_mode="vector_entry_point")``. Slot ``i`` of a vector environment reset with seed
 ``s`` runs exactly the episode of a single environment reset with seed ``s + i`` (Gymnasium's
 convention for seeded vector resets), observation for observation.
@@ -12,7 +12,7 @@ and returns the new episode's first observation.
 
 Example:
     >>> import gymnasium as gym
-    >>> envs = gym.make_vec("gripper:SoftGripperGrasp-v6", num_envs=4,
+    >>> envs = gym.make_vec("gripper:SoftGripperGrasp-v7", num_envs=4,
     ...                     vectorization_mode="vector_entry_point")          # doctest: +SKIP
     >>> obs, info = envs.reset(seed=0)                                       # doctest: +SKIP
 """
@@ -28,7 +28,15 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from gripper.envs.grasp_env import RENDER_MODES, check_action, check_render_args, env_arguments, make_spaces
-from gripper.envs.task import BatchStepper, SceneSet, evaluate, observe, start_episode, unstable_result
+from gripper.envs.task import (
+    BatchStepper,
+    SceneSet,
+    evaluate,
+    observation_divisor,
+    observe,
+    start_episode,
+    unstable_result,
+)
 
 
 class SoftGripperGraspVectorEnv(VectorEnv):
@@ -58,6 +66,7 @@ class SoftGripperGraspVectorEnv(VectorEnv):
         self.observation_structure, self.single_observation_space, self.single_action_space = (
             make_spaces(self.config))
         self.observation_space = batch_space(self.single_observation_space, num_envs)
+        self.observation_divisor = observation_divisor(self.config)  # as the single env's
         self._obs_shape: tuple[int, ...] = self.single_observation_space.shape or ()
         self.action_space = batch_space(self.single_action_space, num_envs)
         # one scene set per slot: rigid scenes carry per-episode mass and friction
@@ -94,7 +103,7 @@ class SoftGripperGraspVectorEnv(VectorEnv):
         rng = self._rngs[i]
         assert rng is not None, "reset seeds every slot's generator first"
         ep = start_episode(self._scenes[i], rng)
-        ep.last_obs = observe(ep, ep.data.sensordata)
+        ep.last_obs = observe(ep, ep.data.sensordata) / self.observation_divisor
         self._eps[i] = ep
         return ep.last_obs.copy(), {"object": ep.scene.obj.name, "is_success": False,
                                     "placement": vars(ep.placement).copy()}
@@ -121,9 +130,10 @@ class SoftGripperGraspVectorEnv(VectorEnv):
             if err is not None:
                 obs[i], rewards[i], terminated[i], info = unstable_result(ep, err)
             else:
-                obs[i] = observe(ep, sens)
+                raw = observe(ep, sens)
+                obs[i] = raw / self.observation_divisor
                 ep.last_obs = obs[i].copy()
-                rewards[i], terminated[i], info = evaluate(ep, obs[i], sens, actions[i], self.config,
+                rewards[i], terminated[i], info = evaluate(ep, raw, sens, actions[i], self.config,
                                                            self.observation_structure)
             truncated[i] = (not terminated[i] and self.max_episode_steps is not None
                             and ep.steps >= self.max_episode_steps)

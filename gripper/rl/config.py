@@ -43,6 +43,11 @@ class TrainConfig(Validated):
             a whole number of rollouts (``n_steps × n_envs``).
         eval_episodes: deterministic-policy episodes per evaluation, seeds from ``EVAL_SEED``.
         max_episode_steps: truncation (control steps of 20 ms).
+        demo_episodes: episodes of the scripted grasp to learn from before reinforcement
+            learning (behaviour cloning; SAC also keeps them in its replay buffer;
+            :mod:`gripper.rl.demonstrations`); 0: none. Their steps count in ``demo_steps``.
+        demo_noise: DART noise on the demonstrations' executed actions (standard deviation in
+            action units; the labels stay the demonstrator's).
         hyperparams: overrides of :mod:`gripper.rl.hyperparams`'s values for ``algo``.
         reward_weights: overrides of the environment's dense reward weights (its
             ``reward_weights``; none for the baselines).
@@ -58,6 +63,8 @@ class TrainConfig(Validated):
     chunk_steps: int = 65_536
     eval_episodes: int = 50
     max_episode_steps: int = 300
+    demo_episodes: int = 0
+    demo_noise: float = 0.3
     hyperparams: dict = field(default_factory=dict)
     reward_weights: dict = field(default_factory=dict)
 
@@ -79,11 +86,20 @@ class TrainConfig(Validated):
             v = getattr(self, name)
             if not isinstance(v, int) or isinstance(v, bool) or v < lo:
                 raise ValueError(f"{name}: must be an integer >= {lo}, got {v!r}")
+        if not isinstance(self.demo_episodes, int) or isinstance(self.demo_episodes, bool) or not (
+                0 <= self.demo_episodes <= 10_000):
+            raise ValueError(f"demo_episodes: must be an integer in [0, 10000], got {self.demo_episodes!r}")
+        if (isinstance(self.demo_noise, bool) or not isinstance(self.demo_noise, int | float)
+                or not 0 <= self.demo_noise <= 1):
+            raise ValueError(f"demo_noise: must be a number in [0, 1], got {self.demo_noise!r}")
         if self.n_envs > 64 or self.eval_episodes > 1000:
             raise ValueError("n_envs: at most 64; eval_episodes: at most 1000")
         from gripper.rl.hyperparams import hyperparams_for
 
-        hyperparams_for(self.algo, self.hyperparams)  # raises on an unknown or bad override
+        hp = hyperparams_for(self.algo, self.hyperparams)  # raises on an unknown or bad override
+        if self.demo_episodes and hp["normalize"]:
+            raise ValueError("demo_episodes: behaviour cloning needs hyperparams.normalize = false "
+                             "(the environment scales its observations itself)")
         from gripper.envs.config import EnvConfig
 
         EnvConfig(objects=tuple(self.objects), reward_weights=dict(self.reward_weights)).validate()

@@ -36,7 +36,7 @@ PPO_HYPERPARAMS: dict[str, Any] = {
     "sde_sample_freq": 16,
     "log_std_init": 0.0,     # SB3 default
     "ortho_init": True,      # SB3 default
-    "normalize": True,       # VecNormalize on observations and rewards (see the module docstring)
+    "normalize": False,      # VecNormalize off: the environment scales observations and rewards (v7)
 }
 
 SAC_HYPERPARAMS: dict[str, Any] = {
@@ -50,7 +50,7 @@ SAC_HYPERPARAMS: dict[str, Any] = {
     "gradient_steps": 1,     # ... of one gradient step: 1 per 8 transitions, for wall time
     "ent_coef": "auto",      # SB3 default: the entropy target is -dim(action)
     "net_arch": [256, 256],  # SB3 default for SAC
-    "normalize": True,       # VecNormalize on observations only (SAC's Q targets need raw rewards)
+    "normalize": False,      # as PPO's (True: VecNormalize on observations only)
 }
 
 HYPERPARAMS = {"ppo": PPO_HYPERPARAMS, "sac": SAC_HYPERPARAMS}

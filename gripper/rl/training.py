@@ -119,7 +119,7 @@ def _read_progress(path: Path) -> list[dict]:
     if not path.exists():
         return []
     with open(path, newline="") as f:
-        return [{k: (float(v) if k != "steps" and k != "train_episodes" else int(v)) for k, v in r.items()}
+        return [{k: (int(v) if k in ("steps", "train_episodes", "demo_steps") else float(v)) for k, v in r.items()}
                 for r in csv.DictReader(f)]
 
 
@@ -194,9 +194,51 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
     from gripper.rl.evaluation import evaluate_policy, make_eval_env
 
     eval_env = make_eval_env(cfg.env_kwargs(), cfg.eval_episodes)
-    columns = COLUMNS + [f"eval_{o}" for o in sorted(set(cfg.objects))]
+    columns = COLUMNS + [f"eval_{o}" for o in sorted(set(cfg.objects))] + (
+        ["demo_steps"] if cfg.demo_episodes else [])
     t_wall = rows[-1]["wall_s"] if rows else 0.0
+    demo_steps = int(rows[0]["demo_steps"]) if rows and cfg.demo_episodes else 0
+
+    def record(row: dict[str, Any]) -> None:
+        if cfg.demo_episodes:
+            row["demo_steps"] = demo_steps
+        rows.append(row)
+        _write_progress(prog_path, rows, columns)
+        if on_progress is not None:
+            on_progress(row)
+
+    def checkpoint(steps: int) -> None:
+        path = ckpt_dir / f"step_{steps}.zip"
+        model.save(str(path))
+        if norm is not None:
+            norm.save(str(path.with_name(path.stem + "_" + NORM_FILE)))
+        if cfg.algo == "sac":
+            model.save_replay_buffer(str(ckpt_dir / "replay_buffer.pkl"))
+
     try:
+        if cfg.demo_episodes and latest is None:
+            # behaviour cloning from the scripted grasp (gripper.rl.demonstrations), evaluated
+            # and checkpointed as step 0; the demonstrations' own outcome is the row's training part
+            from gripper.rl.demonstrations import collect_demonstrations, fill_replay_buffer, pretrain
+
+            t0 = time.perf_counter()
+            demo = collect_demonstrations(cfg.env_kwargs(), cfg.demo_episodes, cfg.demo_noise, cfg.seed,
+                                          n_envs=cfg.n_envs)
+            demo_steps = demo.steps
+            pretrain(model, demo, seed=chunk_seed(cfg.seed, 2**31))
+            if cfg.algo == "sac":
+                fill_replay_buffer(model, demo)
+            ev = evaluate_policy(deterministic_policy(model, norm), cfg.env_kwargs(), cfg.eval_episodes,
+                                 EVAL_SEED, venv=eval_env)
+            checkpoint(0)
+            t_wall += time.perf_counter() - t0
+            ends = np.flatnonzero(demo.done)
+            starts = np.concatenate([[0], ends[:-1] + 1])
+            record({"steps": 0, "wall_s": round(t_wall, 1), "train_episodes": len(ends),
+                    "train_success": float(demo.success.mean()),
+                    "train_return": float(np.mean([demo.reward[a:b + 1].sum() for a, b in zip(starts, ends, strict=True)])),
+                    "eval_success": ev["success"], "eval_return": ev["return"],
+                    **{f"eval_{o}": ev["by_object"].get(o, float("nan")) for o in sorted(set(cfg.objects))}})
         while done_steps < cfg.steps:
             t0 = time.perf_counter()
             k = done_steps // chunk
@@ -216,12 +258,7 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
                                  EVAL_SEED, venv=eval_env)
             if norm is not None:
                 norm.training = True
-            path = ckpt_dir / f"step_{done_steps}.zip"
-            model.save(str(path))
-            if norm is not None:
-                norm.save(str(path.with_name(path.stem + "_" + NORM_FILE)))
-            if cfg.algo == "sac":
-                model.save_replay_buffer(str(ckpt_dir / "replay_buffer.pkl"))
+            checkpoint(done_steps)
             t_wall += time.perf_counter() - t0
             row: dict[str, Any] = {
                 "steps": done_steps, "wall_s": round(t_wall, 1), "train_episodes": len(log.done),
@@ -229,10 +266,7 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
                 "train_return": float(np.mean([d[1] for d in log.done])) if log.done else float("nan"),
                 "eval_success": ev["success"], "eval_return": ev["return"],
                 **{f"eval_{o}": ev["by_object"].get(o, float("nan")) for o in sorted(set(cfg.objects))}}
-            rows.append(row)
-            _write_progress(prog_path, rows, columns)
-            if on_progress is not None:
-                on_progress(row)
+            record(row)
         model.save(str(out / POLICY_FILE))
         if norm is not None:
             norm.save(str(out / NORM_FILE))

@@ -43,6 +43,11 @@ def add(sub) -> None:
            help="steps between evaluations and checkpoints")
     number(tr, "--eval-episodes", int, lo=1, hi=TRIALS_MAX, default=tc.eval_episodes,
            help=f"evaluation episodes, seeds from {EVAL_SEED} on")
+    number(tr, "--demos", int, lo=0, hi=10_000, default=tc.demo_episodes,
+           help="episodes of the scripted grasp to clone before RL (SAC also replays them); "
+                "0: none")
+    number(tr, "--demo-noise", float, lo=0.0, hi=1.0, default=tc.demo_noise,
+           help="DART noise on the demonstrations' actions")
     tr.add_argument("--set", action="append", metavar="KEY=VALUE",
                     help="override a hyper-parameter, e.g. --set n_epochs=5 (repeatable)")
     tr.add_argument("--reward-weight", action="append", metavar="TERM=W",
@@ -60,6 +65,7 @@ def run(args) -> int:
     cfg = TrainConfig(algo=args.algo, objects=object_specs(args.objects),
                       action_mode=args.action_mode, xy_actions=args.xy, steps=args.steps, seed=args.seed,
                       n_envs=args.n_envs, chunk_steps=args.chunk_steps, eval_episodes=args.eval_episodes,
+                      demo_episodes=args.demos, demo_noise=args.demo_noise,
                       hyperparams=_hyperparam_overrides(args.set),
                       reward_weights=_hyperparam_overrides(args.reward_weight, "--reward-weight")).validate()
     from gripper.rl.training import RUN_FILES as TRAIN_FILES

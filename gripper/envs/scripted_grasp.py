@@ -1,0 +1,83 @@
+"""The scripted grasp as a policy of the environment's own observation and velocity actions:
+the demonstrator of reinforcement learning's demonstrations (``gripper train --demos``).
+
+It does what the grasp benchmark's protocol does, decided from the observation alone (no
+clock), so that a network can imitate it: with ``xy_actions`` it moves the palm over the
+object (``object_pos_rel_palm``); it lowers the palm until the fingertips are 8 mm above the
+floor; it then reels all cables in at 2 rad/s of spool to 3.0 rad (the protocol's closing rate
+and the object library's rigid closing angle), and once the servo set-point is there it lifts
+the palm to its home height at the palm's full speed and holds. Each phase is read from the
+observed set-points (``servo_setpoint``, ``palm_setpoint``), which the environment integrates
+from the velocity actions, so the state says where in the grasp the policy is.
+
+Example:
+    >>> import gymnasium as gym                                                  # doctest: +SKIP
+    >>> envs = gym.make_vec("gripper:SoftGripperGrasp-v7", num_envs=4, action_mode="synergy",
+    ...                     vectorization_mode="vector_entry_point")            # doctest: +SKIP
+    >>> expert = ScriptedGrasp(envs.unwrapped.config)                          # doctest: +SKIP
+    >>> obs, _ = envs.reset(seed=0)                                            # doctest: +SKIP
+    >>> obs, *_ = envs.step(expert(obs))                                       # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from gripper.envs.config import EnvConfig
+from gripper.envs.task import observation_divisor, observation_structure
+
+TIP_CLEARANCE = 0.008   # m, fingertips above the floor at the grasp (GraspProtocol's)
+CLOSE_RATE = 2.0        # rad/s of spool: GraspProtocol's closing rate
+CLOSE_ANGLE = 3.0       # rad: the object library's closing angle for rigid objects (RIGID_CLOSE)
+CENTRED = 0.002         # m: the palm counts as over the object within this horizontal distance
+
+
+class ScriptedGrasp:
+    """``expert(obs batch) -> action batch`` for an environment made with ``config`` (velocity
+    servo and palm actions; either action mode; with or without x/y actions).
+
+    Raises:
+        ValueError: the environment's actions are position set-points or its gripper is the
+            pneumatic one (this script reels cables).
+    """
+
+    def __init__(self, config: EnvConfig):
+        if config.servo_control != "velocity" or config.palm_control != "velocity":
+            raise ValueError("ScriptedGrasp: needs servo_control and palm_control 'velocity'")
+        if config.params.pneumatic_fingers:
+            raise ValueError("ScriptedGrasp: the scripted grasp reels cables; the pneumatic gripper has none")
+        self.cfg = config
+        self.divisor = observation_divisor(config)
+        self.struct = observation_structure(config)
+        p = config.params
+        self.z_grasp = p.finger_length + TIP_CLEARANCE  # palm-face height at the grasp [m]
+        self.z_top = p.lift.home_height
+        dt = config.control_period
+        self.palm_step = config.palm_speed * dt      # set-point change at an action of 1 [m]
+        self.servo_step = p.servo.slew_rate * dt     # [rad]
+        self.n_servo = config.n_fingers if config.action_mode == "fingers" else 1
+
+    def _part(self, obs: np.ndarray, name: str) -> np.ndarray:
+        i, n, _ = self.struct[name]
+        return obs[:, i:i + n] * self.divisor[i:i + n]
+
+    def __call__(self, obs: np.ndarray) -> np.ndarray:
+        obs = np.atleast_2d(np.asarray(obs, dtype=np.float64))
+        servo_sp = self._part(obs, "servo_setpoint").mean(axis=1)
+        palm_sp = self._part(obs, "palm_setpoint")
+        rel = self._part(obs, "object_pos_rel_palm")
+        closed = servo_sp >= CLOSE_ANGLE - 1e-6
+        low = palm_sp[:, 2] <= self.z_grasp + 0.5 * self.palm_step
+        a = np.zeros((len(obs), self.cfg.action_size), dtype=np.float32)
+        # servo: close at the protocol's rate once the palm is down, then hold
+        close = np.clip((CLOSE_ANGLE - servo_sp) / self.servo_step, 0.0, CLOSE_RATE / self.cfg.params.servo.slew_rate)
+        a[:, :self.n_servo] = np.where(low & ~closed, close, 0.0)[:, None]
+        # palm: down to the grasp height before the fingers close, up to home after
+        down = np.clip((self.z_grasp - palm_sp[:, 2]) / self.palm_step, -1.0, 1.0)
+        up = np.clip((self.z_top - palm_sp[:, 2]) / self.palm_step, 0.0, 1.0)
+        a[:, self.n_servo] = np.where(closed, up, np.where(low, 0.0, down))
+        if self.cfg.xy_actions:  # over the object while the fingers are open
+            xy = np.clip(rel[:, :2] / self.palm_step, -1.0, 1.0)
+            centred = np.hypot(rel[:, 0], rel[:, 1]) < CENTRED
+            a[:, self.n_servo + 1:] = np.where((closed | centred)[:, None], 0.0, xy)
+        return a
