@@ -214,7 +214,7 @@ def test_vector_env_finds_the_unstable_slot():
 def test_velocity_palm_moves_its_set_point_at_palm_speed_and_stays_in_range():
     """Velocity action: each +-1 step moves the lift set-point palm_speed x 20 ms, 0 holds it,
     and it stops at the range's ends (home 0.25 m; fingertips 4 mm above the floor)."""
-    env = SoftGripperGraspEnv(objects="block", action_mode="synergy")
+    env = SoftGripperGraspEnv(objects="block", action_mode="synergy", scale_observations=False)
     obs, _ = env.reset(seed=0)
     i = env.observation_structure["palm_setpoint"][0] + 2
     z0 = obs[i]
@@ -235,7 +235,7 @@ def test_velocity_palm_moves_its_set_point_at_palm_speed_and_stays_in_range():
 
 def test_position_control_keeps_the_v3_actions():
     """palm_control and servo_control "position": the entries are the set-points themselves."""
-    env = SoftGripperGraspEnv(objects="block", action_mode="synergy", palm_control="position",
+    env = SoftGripperGraspEnv(objects="block", action_mode="synergy", scale_observations=False, palm_control="position",
                               servo_control="position")
     env.reset(seed=0)
     a, c = env.unwrapped.lift_action(0.2), env.unwrapped.servo_action(1.2)
@@ -246,7 +246,7 @@ def test_position_control_keeps_the_v3_actions():
 
 
 def test_velocity_servo_moves_its_set_point_at_the_slew_rate():
-    env = SoftGripperGraspEnv(objects="block", action_mode="synergy")
+    env = SoftGripperGraspEnv(objects="block", action_mode="synergy", scale_observations=False)
     obs, _ = env.reset(seed=0)
     i = env.observation_structure["servo_setpoint"][0]
     step = env.config.params.servo.slew_rate * env.config.control_period
@@ -283,3 +283,28 @@ def test_a_velocity_grasp_succeeds_and_the_episode_runs_on():
             held_at = k
     assert held_at is not None and held_at < 250
     assert info["is_success"] and info["reward_success"] == env.config.weights["success"]
+
+
+def test_observations_are_the_physical_values_over_their_scales():
+    """v7: the returned observation is each part's SI value divided by its stated scale, and the
+    scaled and unscaled environments run the same episode (same seed, same actions)."""
+    from gripper.envs.config import OBSERVATION_SCALES
+
+    scaled = SoftGripperGraspEnv(objects="block", action_mode="synergy")
+    raw = SoftGripperGraspEnv(objects="block", action_mode="synergy", scale_observations=False)
+    a, _ = scaled.reset(seed=3)
+    b, _ = raw.reset(seed=3)
+    for _ in range(5):
+        a, ra, *_ = scaled.step(np.array([1.0, -1.0]))
+        b, rb, *_ = raw.step(np.array([1.0, -1.0]))
+        assert ra == rb
+    for name, (i, n, _) in scaled.observation_structure.items():
+        np.testing.assert_allclose(a[i:i + n] * OBSERVATION_SCALES[name][0], b[i:i + n], rtol=1e-12, atol=0)
+    np.testing.assert_allclose(a * scaled.observation_divisor, b, rtol=1e-12, atol=0)
+
+
+def test_the_best_step_pays_one():
+    """v7's dense reward: reach, lift and success together pay at most 1 a step."""
+    from gripper.envs.config import DEFAULT_REWARD_WEIGHTS as w
+
+    assert w["reach"] + w["lift"] + w["success"] == pytest.approx(1.0)

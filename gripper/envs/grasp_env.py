@@ -195,14 +195,14 @@ class SoftGripperGraspEnv(gym.Env):
     else 0. ``"dense"``: the sum of these terms, each returned in ``info`` (weights in
     ``reward_weights``, defaults in brackets):
 
-    - ``reward_reach`` = w [1.0] × (1 − tanh(d / 0.05 m)), d the distance from the grasp point
+    - ``reward_reach`` = w [0.125] × (1 − tanh(d / 0.05 m)), d the distance from the grasp point
       (mid-finger on the palm axis) to the object [m];
     - ``reward_contact`` = w [0.0] × fraction of fingers pressing on the object (> 0.05 N): off
       by default, since paying for touch held PPO in a local optimum (``docs/environment.md``);
-    - ``reward_lift`` = w [2.0] × clip(object rise / 0.08 m, 0, 1);
-    - ``reward_success`` = w [5.0] × is_success;
-    - ``reward_damage`` = -w [10.0], once, when the object becomes damaged;
-    - ``reward_action`` = -w [0.01] × |action|².
+    - ``reward_lift`` = w [0.25] × clip(object rise / 0.08 m, 0, 1);
+    - ``reward_success`` = w [0.625] × is_success;
+    - ``reward_damage`` = -w [1.25], once, when the object becomes damaged;
+    - ``reward_action`` = -w [0.00125] × |action|².
 
     ``info["is_success"]`` is true once the object has been at least ``success_height`` (0.08 m)
     above its start, without slipping ``max_slip`` (20 mm) relative to the palm, for
@@ -286,6 +286,12 @@ class SoftGripperGraspEnv(gym.Env):
       other dynamics; the spaces, rewards and episode rules are unchanged. ``actuation="pneumatic"``
       is new (the pneumatic gripper, its own spaces: ``docs/pneumatic_gripper.md``). v5 is no
       longer registered.
+    - v7, package 0.16.0: observations and rewards on the scales a default PPO or SAC expects,
+      inside the environment: each observation part is divided by its characteristic magnitude
+      (``scale_observations``, ``gripper.envs.config.OBSERVATION_SCALES``; ``env.observation_divisor``
+      turns it back into SI units), and the dense reward's weights are v6's divided by 8 (the
+      best step pays 1). The physics and the episode rules are unchanged. v6 is no longer
+      registered.
 
     Example:
         >>> import gymnasium as gym
