@@ -234,9 +234,10 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
             t_wall += time.perf_counter() - t0
             ends = np.flatnonzero(demo.done)
             starts = np.concatenate([[0], ends[:-1] + 1])
+            demo_return = float(np.mean([demo.reward[a:b + 1].sum() for a, b in zip(starts, ends, strict=True)]))
             record({"steps": 0, "wall_s": round(t_wall, 1), "train_episodes": len(ends),
                     "train_success": float(demo.success.mean()),
-                    "train_return": float(np.mean([demo.reward[a:b + 1].sum() for a, b in zip(starts, ends, strict=True)])),
+                    "train_return": demo_return,
                     "eval_success": ev["success"], "eval_return": ev["return"],
                     **{f"eval_{o}": ev["by_object"].get(o, float("nan")) for o in sorted(set(cfg.objects))}})
         while done_steps < cfg.steps:
