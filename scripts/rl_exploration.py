@@ -27,7 +27,8 @@ def main() -> None:
     ap.add_argument("--holds", default="1,4,16")
     ap.add_argument("--servo-control", choices=("position", "velocity"), default="position")
     args = ap.parse_args()
-    env = gym.make(f"gripper:{ENV_ID}", objects="block", action_mode="synergy", servo_control=args.servo_control)
+    env = gym.make(f"gripper:{ENV_ID}", objects="block", action_mode="synergy", servo_control=args.servo_control,
+                   scale_observations=False)
     st = env.unwrapped.observation_structure
     i_servo, i_palm = st["servo_angle"][0], st["palm_height"][0]
     print(f"servo_control={args.servo_control}")

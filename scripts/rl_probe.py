@@ -136,7 +136,8 @@ def main() -> None:
     args = ap.parse_args()
     torch.set_num_threads(1)
     base = {} if args.variant.startswith("v4") else V3
-    env_kwargs = {"objects": "block", "action_mode": "synergy", **base, **VARIANTS[args.variant]}
+    env_kwargs = {"objects": "block", "action_mode": "synergy", "scale_observations": False,  # SI values
+                  **base, **VARIANTS[args.variant]}
     if args.variant.startswith("rate"):
         venv = VecMonitor(make_vec_env(lambda: gym.make(ENV_ID, **env_kwargs), n_envs=args.n_envs,
                                        wrapper_class=LiftRate))

@@ -77,6 +77,7 @@ def run(objects, episodes, seed, params=None):
     out = {}
     for name in objects:
         env = gym.make("gripper:SoftGripperGrasp-v7", objects=name, xy_actions=True, params=params,
+                       scale_observations=False,  # it reads heights and offsets in metres
                        palm_control="position", servo_control="position")
         policy = ScriptedGrasp(env)
         wins = 0

@@ -23,12 +23,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from gripper.envs.config import EnvConfig
+from gripper.envs.config import HELD, EnvConfig
 from gripper.envs.task import observation_divisor, observation_structure
+from gripper.objects.library import RIGID_CLOSE as CLOSE_ANGLE  # rad: rigid objects' closing angle
 
-TIP_CLEARANCE = 0.008   # m, fingertips above the floor at the grasp (GraspProtocol's)
-CLOSE_RATE = 2.0        # rad/s of spool: GraspProtocol's closing rate
-CLOSE_ANGLE = 3.0       # rad: the object library's closing angle for rigid objects (RIGID_CLOSE)
 CENTRED = 0.002         # m: the palm counts as over the object within this horizontal distance
 
 
@@ -50,11 +48,13 @@ class ScriptedGrasp:
         self.divisor = observation_divisor(config)
         self.struct = observation_structure(config)
         p = config.params
-        self.z_grasp = p.finger_length + TIP_CLEARANCE  # palm-face height at the grasp [m]
+        self.z_grasp = p.finger_length + HELD.tip_clearance  # palm-face height at the grasp [m]
         self.z_top = p.lift.home_height
         dt = config.control_period
         self.palm_step = config.palm_speed * dt      # set-point change at an action of 1 [m]
         self.servo_step = p.servo.slew_rate * dt     # [rad]
+        # the protocol's closing rate (cable speed over spool radius) as a fraction of the slew rate
+        self.close_action = HELD.close_speed / p.servo.spool_radius / p.servo.slew_rate
         self.n_servo = config.n_fingers if config.action_mode == "fingers" else 1
 
     def _part(self, obs: np.ndarray, name: str) -> np.ndarray:
@@ -70,7 +70,7 @@ class ScriptedGrasp:
         low = palm_sp[:, 2] <= self.z_grasp + 0.5 * self.palm_step
         a = np.zeros((len(obs), self.cfg.action_size), dtype=np.float32)
         # servo: close at the protocol's rate once the palm is down, then hold
-        close = np.clip((CLOSE_ANGLE - servo_sp) / self.servo_step, 0.0, CLOSE_RATE / self.cfg.params.servo.slew_rate)
+        close = np.clip((CLOSE_ANGLE - servo_sp) / self.servo_step, 0.0, self.close_action)
         a[:, :self.n_servo] = np.where(low & ~closed, close, 0.0)[:, None]
         # palm: down to the grasp height before the fingers close, up to home after
         down = np.clip((self.z_grasp - palm_sp[:, 2]) / self.palm_step, -1.0, 1.0)

@@ -50,6 +50,7 @@ def record_policy_video(act: Callable[[np.ndarray], np.ndarray], env_kwargs: dic
         obs, info = env.reset(seed=seed)
         u = env.unwrapped
         i_h = u.observation_structure["palm_height"][0]
+        to_m = float(u.observation_divisor[i_h])  # the observation's palm height in SI units
         max_steps = getattr(env.spec, "max_episode_steps", None) or 300
         say(f"running the policy (seed {seed}) and rendering up to {max_steps + 1} frames "
             f"({width}x{height}, camera {camera}) ...")
@@ -60,7 +61,7 @@ def record_policy_video(act: Callable[[np.ndarray], np.ndarray], env_kwargs: dic
             if overlay:
                 img = overlay_lines(img, [
                     f"{info['object']}  step {step:3d}  t = {step * u.config.control_period:4.2f} s",
-                    f"palm {obs[i_h]:.3f} m  rise {info.get('object_height_m', 0.0) * 1e3:5.1f} mm  "
+                    f"palm {obs[i_h] * to_m:.3f} m  rise {info.get('object_height_m', 0.0) * 1e3:5.1f} mm  "
                     f"held {info.get('held_s', 0.0):.2f} s" + ("  SUCCESS" if held else "")])
             frames.append(img)
             progress.update(len(frames))
