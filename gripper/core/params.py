@@ -528,6 +528,50 @@ class PneumaticFinger(Validated):
                              f"{self.datasheet.pressure_max:g} Pa, got {self.pressure_max!r}")
 
 
+CONTACT_MODELS = ("pads", "solver")
+
+
+@dataclass(frozen=True)
+class PadContact(Validated):
+    """How the fingers meet a part: the silicone's contact law and the fingers' surface shape
+    (``gripper.model.pads``; the derivation and its checks: ``docs/contact.md``).
+
+    ``model = "pads"`` (the default): each finger element (cable) or segment (pneumatic) carries
+    its collision surface on a pad body that slides into it along the grasping face's normal,
+    against springs in N/m that follow Hertz's law for the silicone (E* = E / (1 - nu^2): paper
+    000 Table 2 for the cable finger, 6 C10 of paper 001's Yeoh fit with nu = 0.5 for the
+    pneumatic one), and the part's contact is made near-rigid, so the force-indentation is the
+    material's whatever the part weighs. ``"solver"``: 0.16.0's contact, MuJoCo's default
+    softness on the element itself (its stiffness scales with the contact's effective mass),
+    kept for comparison.
+
+    Attributes:
+        model: ``"pads"`` or ``"solver"``.
+        pad_radius: the pad's curvature radius in Hertz's law.
+        edge_radius: rounding of the cable finger elements' edges.
+        pneumatic_edge_radius: rounding of the pneumatic segments' grasping-face edges.
+        damping_ratio: the pad's damping, a ratio of critical for its 1 N tangent stiffness on
+            the element's mass.
+        fit_force_max: the highest pad force the piecewise-linear spring follows Hertz to.
+    """
+
+    SECTION = "contact"
+
+    model: str = param("pads", "-", choices=CONTACT_MODELS,
+                       source="issue 44: the contact law from the finger's material")
+    pad_radius: float = param(0.008, "m", gt=0, le=0.1,
+                              source="assumed: half the 16 mm finger width, a pad face rounded across the finger")
+    edge_radius: float = param(0.0015, "m", ge=0, le=0.004,
+                               source="assumed: a molded silicone edge; at most what the middle element's "
+                                      "2.7 mm grasping face between two cuts can hold")
+    pneumatic_edge_radius: float = param(0.002, "m", ge=0, le=0.005,
+                                         source="assumed: a molded edge, about the 2 mm wall of paper 001 §2.1")
+    damping_ratio: float = param(0.5, "-", gt=0, le=10,
+                                 source="paper 000 Table 2's modal damping ratio of the silicone finger")
+    fit_force_max: float = param(15.0, "N", gt=0.1, le=1000,
+                                 source="assumed: three times the 5 N set-point's blocked-tip force")
+
+
 INTEGRATORS = ("euler", "implicit", "implicitfast", "rk4")
 
 
@@ -563,6 +607,7 @@ _SECTIONS: dict[str, type] = {
     "sim": SimOptions,
     "actuation": Actuation,
     "pneumatic": PneumaticFinger,
+    "contact": PadContact,
 }
 
 
@@ -585,6 +630,7 @@ class GripperParams(Validated):
     sim: SimOptions = field(default_factory=SimOptions)
     actuation: Actuation = field(default_factory=Actuation)
     pneumatic: PneumaticFinger = field(default_factory=PneumaticFinger)
+    contact: PadContact = field(default_factory=PadContact)
 
     @property
     def pneumatic_fingers(self) -> bool:

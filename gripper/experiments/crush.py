@@ -71,7 +71,7 @@ def crush_test(obj: str | GraspObject, depth: float, *, speed: float = CRUSH_SPE
     p = trial_params(p).validate()
     spec = build_scene_spec(p, with_object=False)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
-    add_object(spec, obj, Placement())
+    add_object(spec, obj, Placement(), rigid_contact=p.contact.model == "pads")
     z_top = height + CRUSH_GAP + PLATE_HALF[2]  # plate centre at the start
     plate = spec.worldbody.add_body(name="platen", mocap=True, pos=[0.0, 0.0, z_top])
     plate.add_geom(name="platen_geom", type=mujoco.mjtGeom.mjGEOM_BOX, size=list(PLATE_HALF),

@@ -47,7 +47,7 @@ def face_press(points: tuple[int, int, int], depth: float) -> dict:
     p = trial_params(p)
     spec = build_scene_spec(p, with_object=False)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
-    add_object(spec, obj, Placement())
+    add_object(spec, obj, Placement(), rigid_contact=p.contact.model == "pads")
     hx, zc = obj.size[0], obj.size[2] + 0.001
     r = PRESS_RADIUS
     spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.005, 0.05, 0.05], pos=[-hx - 0.005, 0, zc])

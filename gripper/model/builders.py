@@ -40,6 +40,7 @@ from gripper.model.geometry import (
     element_vertices,
 )
 from gripper.model.names import MODEL_NAME, FingerNames, finger_name
+from gripper.model.pads import PadMaker, add_pad_meshes
 from gripper.objects.library import get_object
 from gripper.pneumatic.chamber import add_pneumatic_finger, add_segment_meshes
 from gripper.servo.actuator import add_servo, set_dcmotor
@@ -142,10 +143,12 @@ def add_element_meshes(spec: mujoco.MjSpec, p: GripperParams) -> None:
 
 
 def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, prefix: str,
-               pos, quat, defaults: dict) -> FingerNames:
+               pos, quat, defaults: dict, pad=None) -> FingerNames:
     """Add one finger (mount frame, element chain, pads, cable sites, reel) under ``parent``.
 
-    ``pos``/``quat`` place the finger frame in ``parent``'s frame. Returns the names.
+    ``pos``/``quat`` place the finger frame in ``parent``'s frame. ``pad``: a
+    :class:`gripper.model.pads.PadMaker` that puts each element's surface on a compliant pad
+    (None: the element's own geom collides). Returns the names.
     """
     g = p.finger
     names = FingerNames(prefix, g.n_segments)
@@ -190,12 +193,14 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
             _set_rigid_stop(stop, p)
         seg.add_geom(defaults["visual"], name=f"{prefix}_seg{j}_visual",
                      type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}", material="silicone")
-        seg.add_geom(defaults["collision"], name=f"{prefix}_seg{j}_collision",
-                     type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}")
+        collision = seg.add_geom(defaults["collision"], name=f"{prefix}_seg{j}_collision",
+                                 type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}")
         prof = element_profile(g, kind)
         top = prof[np.isclose(prof[:, 1], g.height), 0]
         x0, x1 = float(top.min()), float(top.max())
-        seg.add_site(defaults["pad"], name=f"{prefix}_seg{j}_pad",
+        host = seg if pad is None else pad(seg, j, kind, collision, element_vertices(g, kind),
+                                           (x1 - x0) * g.width)
+        host.add_site(defaults["pad"], name=f"{prefix}_seg{j}_pad",
                      pos=[0.5 * (x0 + x1), 0, g.height],
                      size=[0.5 * (x1 - x0), 0.5 * g.width, PAD_HALF_THICKNESS])
         for role, x in cable_via_points(g, p.cable, kind):
@@ -318,14 +323,22 @@ def finger_height(p: GripperParams) -> float:
 def add_fingers(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, defaults: dict) -> list[FingerNames]:
     """Every finger on the palm (cable or pneumatic, ``p.actuation``) with its drive."""
     out = []
+    pads = p.contact.model == "pads"
+    if pads:
+        add_pad_meshes(spec, p)
     for k in range(p.layout.n_fingers):
         pos, quat = finger_mount_pose(p, k)
         if p.pneumatic_fingers:
             names = FingerNames(finger_name(k), p.pneumatic.n_segments, pneumatic=True)
-            add_pneumatic_finger(spec, parent, p, names, pos, quat, defaults)
+            maker = PadMaker(spec, p, names, defaults) if pads else None
+            add_pneumatic_finger(spec, parent, p, names, pos, quat, defaults, maker)
         else:
-            names = add_finger(spec, parent, p, finger_name(k), pos, quat, defaults)
+            names = FingerNames(finger_name(k), p.finger.n_segments)
+            maker = PadMaker(spec, p, names, defaults) if pads else None
+            add_finger(spec, parent, p, finger_name(k), pos, quat, defaults, maker)
             add_cable_drive(spec, p, names, defaults["servo"])
+        if maker is not None:
+            maker.exclude_neighbours()
         out.append(names)
     return out
 
@@ -403,6 +416,12 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
     spec.add_sensor(name="palm_pos", type=mujoco.mjtSensor.mjSENS_FRAMEPOS, objname="palm_center",
                     objtype=mujoco.mjtObj.mjOBJ_SITE)
     tune_soft_limits(spec, p)
+    if p.contact.model == "pads":
+        # The pads' stiff springs on light bodies need MuJoCo's discrete integrator, implicit in
+        # the springs (gripper.model.pads), as the grasp scenes take anyway; set after the limits
+        # are tuned, whose match to that integrator the grasp scenes make once per design
+        # (gripper.sim.scene).
+        spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
     return spec
 
 

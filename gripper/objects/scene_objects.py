@@ -69,8 +69,22 @@ def _yaw_quat(yaw: float) -> list[float]:
     return [math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw)]
 
 
-def add_object(spec: mujoco.MjSpec, obj: GraspObject, place: Placement = Placement()) -> None:
-    """Add ``obj`` to ``spec`` standing on the floor at ``place``; edits ``spec`` in place."""
+# A rigid part's contact when the fingers carry compliant pads (gripper.model.pads): near-rigid,
+# so the pads' springs, in N/m, carry the indentation. A contact's static stiffness is
+# d / ((1 - d) A timeconst^2), A its inverse effective mass in the integrator's metric: with
+# d = 0.999 and 4 ms (twice the trials' step, MuJoCo's stability floor) it is 2.7e5 N/m or more
+# for A up to 230 kg⁻¹ (a 1 g pad on a 10 g part), about 100 times the pads' few thousand N/m.
+# Fixed in seconds, not steps, so the contact is the same at every step size. The part's geom has
+# priority, so these are the values its contacts use (with the floor too: a rigid part on a table).
+RIGID_CONTACT_SOLREF = (0.004, 1.0)
+RIGID_CONTACT_SOLIMP = (0.999, 0.999, 0.001, 0.5, 2.0)
+
+
+def add_object(spec: mujoco.MjSpec, obj: GraspObject, place: Placement = Placement(), *,
+               rigid_contact: bool = True) -> None:
+    """Add ``obj`` to ``spec`` standing on the floor at ``place``; edits ``spec`` in place.
+    ``rigid_contact``: a rigid part's contacts near-rigid (:data:`RIGID_CONTACT_SOLREF`), as the
+    pads need; False keeps MuJoCo's default softness (0.16.0's ``contact.model = "solver"``)."""
     obj.validate()
     mass = obj.mass * place.mass_scale
     mu = obj.friction * place.friction_scale
@@ -98,6 +112,9 @@ def add_object(spec: mujoco.MjSpec, obj: GraspObject, place: Placement = Placeme
         geom.mass = mass
         geom.friction = friction
         geom.priority = 1
+        if rigid_contact:
+            geom.solref = list(RIGID_CONTACT_SOLREF)
+            geom.solimp = list(RIGID_CONTACT_SOLIMP)
         geom.rgba = [0.2, 0.5, 0.8, 1.0]
         return
     if obj.kind == "balloon":

@@ -57,11 +57,17 @@ def segment_vertices(pf: PneumaticFinger, length: float) -> np.ndarray:
     """Vertices of one segment's convex body in its frame [m]: the cross-section (y across, z from
     the back, the half-disc of radius width/2 centred at z = width/2, then straight sides down to
     the grasping face at z = height) at x = 0 and x = ``length``."""
+    section = segment_section(pf)
+    return np.vstack([np.column_stack([np.full(len(section), x), section]) for x in (0.0, length)])
+
+
+def segment_section(pf: PneumaticFinger) -> np.ndarray:
+    """The segment's cross-section (y, z) [m], counter-clockwise: the half-disc back of radius
+    width/2 centred at z = width/2, then straight sides down to the grasping face at z = height."""
     r = 0.5 * pf.width
     phi = np.linspace(math.pi, 2.0 * math.pi, BACK_POINTS)
     back = np.column_stack([r * np.cos(phi), r + r * np.sin(phi)])
-    section = np.vstack([back, [[r, pf.height], [-r, pf.height]]])
-    return np.vstack([np.column_stack([np.full(len(section), x), section]) for x in (0.0, length)])
+    return np.vstack([back, [[r, pf.height], [-r, pf.height]]])
 
 
 def segment_lengths(pf: PneumaticFinger) -> list[float]:
@@ -84,10 +90,12 @@ def hinge_damping(pf: PneumaticFinger) -> float:
 
 
 def add_pneumatic_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, names,
-                         pos, quat, defaults: dict) -> None:
+                         pos, quat, defaults: dict, pad=None) -> None:
     """One pneumatic finger under ``parent`` (``pos``/``quat``: the finger frame in ``parent``'s),
     its chamber tendon and actuator and their sensors; ``names``: its
-    :class:`gripper.model.names.FingerNames`."""
+    :class:`gripper.model.names.FingerNames`; ``pad``: a callable that puts each segment's surface
+    on a compliant pad and returns the body its touch site goes on (``gripper.model.pads.PadMaker``;
+    None: the segment's own geom collides)."""
     pf = p.pneumatic
     prefix = names.prefix
     lengths = segment_lengths(pf)
@@ -112,9 +120,10 @@ def add_pneumatic_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: Gripper
         mass = pf.mass * seg_len / pf.length
         seg.add_geom(defaults["visual"], name=f"{prefix}_seg{j}_visual", type=mujoco.mjtGeom.mjGEOM_MESH,
                      meshname=f"segment_{kind}", material="silicone")
-        seg.add_geom(defaults["collision"], name=f"{prefix}_seg{j}_collision", type=mujoco.mjtGeom.mjGEOM_MESH,
-                     meshname=f"segment_{kind}", mass=mass)
-        seg.add_site(defaults["pad"], name=f"{prefix}_seg{j}_pad", pos=[0.5 * seg_len, 0, pf.height],
+        collision = seg.add_geom(defaults["collision"], name=f"{prefix}_seg{j}_collision",
+                                 type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"segment_{kind}", mass=mass)
+        host = seg if pad is None else pad(seg, j, kind, collision, segment_vertices(pf, seg_len), seg_len * pf.width)
+        host.add_site(defaults["pad"], name=f"{prefix}_seg{j}_pad", pos=[0.5 * seg_len, 0, pf.height],
                      size=[0.5 * seg_len, 0.5 * pf.width, 0.0025])
         if j == pf.n_segments:
             seg.add_site(name=names.tip, pos=[seg_len, 0, pf.hinge_z], size=[0.001] * 3)
@@ -152,4 +161,4 @@ def add_chamber_drive(spec: mujoco.MjSpec, p: GripperParams, names) -> None:
 
 
 __all__ = ["HINGE_RANGE", "add_chamber_drive", "add_pneumatic_finger", "add_segment_meshes", "hinge_damping",
-           "segment_lengths", "segment_vertices"]
+           "segment_lengths", "segment_section", "segment_vertices"]

@@ -61,7 +61,7 @@ def grasp_scene_spec(p: GripperParams, *, with_object: bool = False) -> mujoco.M
 def build_grasp_scene(p: GripperParams, obj: GraspObject, place: Placement) -> mujoco.MjModel:
     """Compile the gripper scene with ``obj`` at ``place`` (:func:`grasp_scene_spec`)."""
     spec = grasp_scene_spec(p)
-    add_object(spec, obj, place)
+    add_object(spec, obj, place, rigid_contact=p.contact.model == "pads")
     m = spec.compile()
     apply_canonical_constants(m, obj, place)  # same numbers in every process (gripper.sim.canonical)
     return m
