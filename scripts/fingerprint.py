@@ -5,7 +5,7 @@ Three artefacts, each through the public entry points only (``gym.make`` and the
 same script runs on any version:
 
 - ``env``: SHA-256 of every observation, reward and termination flag of seeded random-action
-  episodes of ``SoftGripperGrasp-v7`` (block, then cylinder);
+  episodes of ``SoftGripperGrasp-v8`` (block, then cylinder);
 - ``bench``: SHA-256 of ``trials.jsonl`` from ``gripper bench --trials 2`` on the five default
   objects, records sorted by (object, index), with the keys that are not physics removed: the
   wall time, the package versions and the run's configuration hash (which embeds the version);
@@ -52,7 +52,7 @@ grasp = { objects = ["block"], trials = 1 }
 def env_hash(steps: int = 120) -> str:
     h = hashlib.sha256()
     for obj in ("block", "cylinder"):
-        env = gym.make("gripper:SoftGripperGrasp-v7", objects=obj)
+        env = gym.make("gripper:SoftGripperGrasp-v8", objects=obj)
         env.action_space.seed(0)
         obs, _ = env.reset(seed=0)
         h.update(np.asarray(obs, np.float64).tobytes())

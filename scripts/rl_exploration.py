@@ -1,4 +1,4 @@
-"""How far random exploration reaches in ``SoftGripperGrasp-v7``: white against held noise.
+"""How far random exploration reaches in ``SoftGripperGrasp-v8``: white against held noise.
 
 PPO and SAC explore with Gaussian action noise drawn anew every control step (white). The servo
 (slew-limited at its no-load speed) and the velocity palm (an integrator) filter that noise, so

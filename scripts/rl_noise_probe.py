@@ -23,7 +23,7 @@ from scripted_policy import ScriptedGrasp
 
 import gripper  # noqa: F401  (registers the environment)
 
-ENV_ID = "gripper:SoftGripperGrasp-v7"
+ENV_ID = "gripper:SoftGripperGrasp-v8"
 
 
 def episode(env, policy, sigma: float | None, seed: int, rng: np.random.Generator,

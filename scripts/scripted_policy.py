@@ -1,4 +1,4 @@
-"""A scripted grasp policy that drives ``SoftGripperGrasp-v7`` through its public API only.
+"""A scripted grasp policy that drives ``SoftGripperGrasp-v8`` through its public API only.
 
 The policy centres the palm over the object (``xy_actions``: it reads the object's offset from
 the observation, ``object_pos_rel_palm``, at the start of the episode), then does what the
@@ -76,7 +76,7 @@ class ScriptedGrasp:
 def run(objects, episodes, seed, params=None):
     out = {}
     for name in objects:
-        env = gym.make("gripper:SoftGripperGrasp-v7", objects=name, xy_actions=True, params=params,
+        env = gym.make("gripper:SoftGripperGrasp-v8", objects=name, xy_actions=True, params=params,
                        scale_observations=False,  # it reads heights and offsets in metres
                        palm_control="position", servo_control="position")
         policy = ScriptedGrasp(env)

@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v7``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v8``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v7")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v8")``.
 """
 
 from __future__ import annotations
@@ -233,7 +233,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v7", **kwargs)``: the fields of
+    ``gymnasium.make("gripper:SoftGripperGrasp-v8", **kwargs)``: the fields of
     :class:`gripper.envs.config.EnvConfig` (each declared once there, with its unit, range and
     reason; the table is generated into ``docs/environment.md``), ``params`` (a GripperParams or
     a parameter file), ``calibration`` (a ``gripper calibrate`` file) and the renderer's
@@ -292,10 +292,16 @@ class SoftGripperGraspEnv(gym.Env):
       turns it back into SI units), and the dense reward's weights are v6's divided by 8 (the
       best step pays 1). The physics and the episode rules are unchanged. v6 is no longer
       registered.
+    - v8, package 0.17.0: contact from the silicone (issue 44): every finger element sits on a
+      compliant pad whose springs follow Hertz's law for its material, the elements' edges are
+      rounded, and rigid parts' contacts are near-rigid (``gripper.model.pads``,
+      ``docs/contact.md``), so the squeeze and holding forces, and with them every episode's
+      dynamics, change. The spaces, rewards and episode rules are unchanged. v7 is no longer
+      registered.
 
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v7", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v8", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """

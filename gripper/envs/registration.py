@@ -6,7 +6,7 @@ Only the ids and entry points are registered here; the environment modules are i
 
 from __future__ import annotations
 
-ENV_ID = "SoftGripperGrasp-v7"
+ENV_ID = "SoftGripperGrasp-v8"
 
 
 def register_envs() -> None:

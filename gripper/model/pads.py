@@ -43,7 +43,7 @@ from gripper.model.names import FingerNames
 from gripper.objects.scene_objects import RIGID_CONTACT_SOLIMP, RIGID_CONTACT_SOLREF
 
 # The spring's knots: Hertz's force at each, a factor KNOT_FORCE_RATIO apart from KNOT_FORCE_MIN.
-# A chord of delta^(3/2) over a force ratio of 3 (an indentation ratio of 2.08) lies at most 4.7 %
+# A chord of delta^(3/2) over a force ratio of 3 (an indentation ratio of 2.08) lies at most 5.1 %
 # above it; the first chord, from zero to KNOT_FORCE_MIN, is below the 0.1 N the law is checked from.
 KNOT_FORCE_MIN = 0.05  # N
 KNOT_FORCE_RATIO = 3.0  # -
