@@ -196,14 +196,14 @@ def test_grasp_outcome_does_not_depend_on_the_time_step():
     assert all(r["status"] == "ok" and r["success"] for r in recs)
 
 
-@pytest.mark.xfail(reason="0.15.0's recalibrated springs: the peak squeeze is not converged in the step "
-                          "(docs/limitations.md)", strict=False)
-def test_grasp_squeeze_converges_in_the_step():
-    """Peak total force: first order in the step (0.5 -> 2 ms added 8-13 % on block and cylinder
-    trials with 0.14.0's springs), so 1 -> 2 ms should add about half that. With 0.15.0's springs
-    it adds 15.0 % (9.90 N at 2 ms, 11.39 N at 1 ms, both at 20 steps per chunk), and at one 40 ms
-    control period for both (40 steps at 1 ms) 58 % (15.69 N): the squeeze depends on the step
-    and the control period more than this bound allows."""
-    recs = [run_trial("cylinder", seed=0, index=1, protocol=GraspProtocol(timestep=dt, grasp="envelope"))
+@pytest.mark.parametrize("obj", ["block", "cylinder"])
+def test_grasp_squeeze_converges_in_the_step(obj):
+    """Peak total force at 1 and 2 ms, the control period held at 40 ms: within the issue's 5 %.
+    With 0.16.0's contact (MuJoCo's default softness on the elements) the cylinder's envelope
+    grasp squeezed 11.39 N at 1 ms and 9.90 N at 2 ms (15 %), and the fingertip grasp 25-35 %
+    less at 2 ms: the contact's stiffness scaled with the step's effective metric. The pads carry
+    the silicone's law in N/m (gripper.model.pads), so the squeeze is the finger's statics'."""
+    recs = [run_trial(obj, seed=1, index=0, protocol=GraspProtocol(timestep=dt, chunk_steps=round(0.04 / dt)))
             for dt in (0.001, 0.002)]
-    assert recs[0]["peak_total_force_N"] == pytest.approx(recs[1]["peak_total_force_N"], rel=0.15)
+    assert all(r["status"] == "ok" and r["success"] for r in recs)
+    assert recs[0]["peak_total_force_N"] == pytest.approx(recs[1]["peak_total_force_N"], rel=0.05)

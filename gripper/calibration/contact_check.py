@@ -51,6 +51,7 @@ from gripper.model.builders import build_bending_spec
 from gripper.model.names import FingerNames
 from gripper.references.convergence import MEASURE_SCALE, solve_clamped
 from gripper.references.finger_mesh import MeshResolution, finger_mesh
+from gripper.sim.stability import check_stable
 
 CLAMP_LENGTH = 0.008  # m, the reference's clamp (ReferenceConfig.clamp_length)
 # Tensions of the blocked-tip comparison [N]: the small-load range where both models stay
@@ -209,3 +210,209 @@ def blocked_tip_force_continuum(params: GripperParams | None, tensions, *,
                          f"({np.abs(lin.hinge_deg_per_newton).max():.0f}°/N blocked; the first cut "
                          f"closes at {lin.cut_closing_tension:.3g} N); got {t.max():g} N")
     return lin.force_per_newton * t
+
+
+# -- obstacles ----------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Obstacle:
+    """A rigid, world-fixed, frictionless obstacle, placed in the finger frame (x along the
+    finger, z towards the grasping face); it spans the finger's width (y) and more.
+
+    Attributes:
+        kind: ``"plane"`` (the half-space z >= its centre's z, facing the finger) or
+            ``"cylinder"`` (axis along y, the hinge axes).
+        centre_xz: a point of the plane, or the cylinder's axis: x and z [m].
+        radius: the cylinder's radius [m] (0 for a plane).
+        only_element: in the hinge chain, the one element (1 = B1) the obstacle collides with
+            (an explicit contact pair); None for every element.
+    """
+
+    kind: str
+    centre_xz: tuple[float, float]
+    radius: float = 0.0
+    only_element: int | None = None
+
+
+def tip_stop(params: GripperParams | None = None) -> Obstacle:
+    """The blocked-tip stop: the half-space beyond the grasping face's plane (z >= height), in
+    the chain touching the tip element only. The tip element curls into it, so it presses with
+    its distal edge; the stop has no end along x that the edge could slide past.
+
+    A plane rather than a box: a box's face against the tip element's distal edge (an edge on a
+    face) let MuJoCo's convex collision take the tip's face normal, tilted 5° at 0.015 N, for
+    the stop's, which moved the measured force by 2.6 % between 0.015 and 0.016 N; and a box of
+    the tip element's length let the edge slide off its end past about 0.05 N. A plane's
+    contacts always take its normal.
+    """
+    g = (params or GripperParams()).finger
+    return Obstacle("plane", (g.length, g.height), only_element=g.n_segments)
+
+
+def middle_cylinder(params: GripperParams | None, diameter: float, *, clearance: float = 0.0) -> Obstacle:
+    """A cylinder of ``diameter`` [m] over the middle of the finger (x = L/2, the middle cut),
+    resting on the two edges of that cut's opening on the grasping face (the corners of B3's
+    and B4's grasping faces), ``clearance`` [m] off them."""
+    g = (params or GripperParams()).finger
+    r, w = 0.5 * diameter, g.cut_half_width
+    if r <= w:
+        raise ValueError(f"cylinder diameter: must exceed the cut's opening {2 * w:g} m, got {diameter!r}")
+    return Obstacle("cylinder", (0.5 * g.length, g.height + math.sqrt((r + clearance) ** 2 - w * w)), r)
+
+
+# -- the hinge chain ----------------------------------------------------------------------------
+
+CHAIN_RAMP_TIME = 2.0  # s: the tension's ramp from 0
+CHAIN_CHUNK_TIME = 0.5  # s: rest is checked after every chunk
+CHAIN_MAX_TIME = 120.0  # s of simulated time
+CHAIN_REST_DEG = 1e-3  # deg: at rest when no hinge moves more than this over a chunk
+
+
+@dataclass(frozen=True)
+class ContactRest:
+    """A finger at rest against an obstacle under a constant cable tension.
+
+    Attributes:
+        model: ``"chain"`` or ``"continuum"``.
+        tension: the cable tension applied [N].
+        cable_tension: the cable tension at rest (the chain's tendon-limit sensor; the
+            continuum's applied value) [N].
+        normal_force: the contacts' normal forces summed, the whole body's [N].
+        resultant_force: magnitude of the contact forces' resultant in the bending plane [N].
+        contact_x: finger-frame x of the contact points at rest, distinct to 0.1 mm [m]; empty
+            when the finger is not touching.
+        contact_elements: the elements (1 = B1) in contact.
+        element_angles_deg: each element's rotation from straight, B1 first [deg].
+        penetration: the deepest contact's penetration [m].
+        at_rest: the rest criterion was met within the time limit.
+        sim_time: simulated time [s].
+        wall_time_s: [s].
+    """
+
+    model: str
+    tension: float
+    cable_tension: float
+    normal_force: float
+    resultant_force: float
+    contact_x: tuple[float, ...]
+    contact_elements: tuple[int, ...]
+    element_angles_deg: tuple[float, ...]
+    penetration: float
+    at_rest: bool
+    sim_time: float
+    wall_time_s: float
+
+    @property
+    def hinge_angles_deg(self) -> tuple[float, ...]:
+        """Each hinge's angle, B(j+1) against Bj [deg]."""
+        return tuple(float(x) for x in np.diff(self.element_angles_deg))
+
+
+def _contact_solref(timestep: float) -> list[float]:
+    return [2.0 * timestep, 1.0]
+
+
+CONTACT_SOLIMP = (0.99, 0.99, 1e-4, 0.5, 2.0)  # a stiff obstacle: 1 % of its penetration is soft
+
+
+def chain_contact(params: GripperParams | None, tension: float, obstacle: Obstacle) -> ContactRest:
+    """The hinge chain (:func:`build_bending_spec`) with ``obstacle`` in its scene and the cable
+    at ``tension`` [N], run to rest (see the module docstring).
+
+    The servo is off (actuation disabled) and the reel's slide joint is pulled with a constant
+    generalised force equal to the tension, ramped over ``CHAIN_RAMP_TIME``; the rope's tendon
+    limit carries it to the finger. At rest when no hinge moves more than ``CHAIN_REST_DEG``
+    over ``CHAIN_CHUNK_TIME`` (at most ``CHAIN_MAX_TIME``). The finger frame is the mount's:
+    world x is finger x, world y is finger z, world z is 0.1 m less finger y.
+    """
+    t0 = time.perf_counter()
+    p = (params or GripperParams()).validate()
+    g = p.finger
+    spec = build_bending_spec(p)
+    names = FingerNames("f0", g.n_segments)
+    mount = np.array([0.0, 0.0, 0.1])
+    cx, cz = obstacle.centre_xz
+    solref, solimp = _contact_solref(p.sim.timestep), list(CONTACT_SOLIMP)
+    contact = dict(condim=1, friction=[0, 0, 0], solref=solref, solimp=solimp)
+    if obstacle.kind == "plane":  # its normal (local z) along world -y: solid on the +y side
+        geom = spec.worldbody.add_geom(name="obstacle", type=mujoco.mjtGeom.mjGEOM_PLANE,
+                                       size=[0.05, 0.05, 0.01], pos=[cx, cz, mount[2]],
+                                       zaxis=[0, -1, 0], **contact)
+    else:  # a cylinder's axis is its local z: world z, the hinge axes
+        geom = spec.worldbody.add_geom(name="obstacle", type=mujoco.mjtGeom.mjGEOM_CYLINDER,
+                                       size=[obstacle.radius, g.width, 0], pos=[cx, cz, mount[2]],
+                                       **contact)
+    geom.priority = 1
+    if obstacle.only_element is not None:
+        geom.contype = geom.conaffinity = 0
+        spec.add_pair(geomname1="obstacle", geomname2=f"f0_seg{obstacle.only_element}_collision",
+                      condim=1, friction=[0, 0, 0, 0, 0], solref=solref, solimp=solimp)
+    m = spec.compile()
+    d = mujoco.MjData(m)
+    m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
+    reel = m.joint(names.reel).dofadr[0]
+    hq = np.array([m.joint(h).qposadr[0] for h in names.hinges])
+    dofs = np.array([m.joint(h).dofadr[0] for h in names.hinges] + [reel])
+    sensor = m.sensor(f"{names.cable}_tension").adr[0]
+    geom = m.geom("obstacle").id
+    seg_of_body = {m.body(b).id: k + 1 for k, b in enumerate(names.bodies)}
+    chunk = int(round(CHAIN_CHUNK_TIME / m.opt.timestep))
+    at_rest = False
+    while d.time < CHAIN_MAX_TIME:
+        before = d.qpos[hq].copy()
+        for _ in range(chunk):
+            d.qfrc_applied[reel] = tension * min(1.0, d.time / CHAIN_RAMP_TIME)
+            mujoco.mj_step(m, d)
+        check_stable(m, d, "contact check (chain)")
+        moved = np.degrees(np.abs(d.qpos[hq] - before)).max()
+        if d.time > CHAIN_RAMP_TIME and moved < CHAIN_REST_DEG and np.abs(d.qvel[dofs]).max() < 1e-3:
+            at_rest = True
+            break
+    mujoco.mj_forward(m, d)
+    to_finger = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]).T  # world -> finger
+    contacts = []
+    for i in range(d.ncon):
+        c = d.contact[i]
+        if geom not in (c.geom1, c.geom2):
+            continue
+        other = c.geom2 if c.geom1 == geom else c.geom1
+        f6 = np.zeros(6)
+        mujoco.mj_contactForce(m, d, i, f6)
+        normal = c.frame[:3] * (1.0 if c.geom2 == geom else -1.0)  # onto the obstacle
+        contacts.append((to_finger @ (c.pos - mount), seg_of_body.get(int(m.geom_bodyid[other]), 0),
+                         f6[0], f6[0] * (to_finger @ normal), -c.dist))
+    q = d.qpos[hq]
+    return _contact_rest("chain", tension, float(d.sensordata[sensor]), contacts,
+                         np.degrees(np.concatenate([[0.0], np.cumsum(q)])), at_rest, float(d.time),
+                         time.perf_counter() - t0)
+
+
+def _contact_rest(model: str, tension: float, cable: float, contacts: list, angles_deg: np.ndarray,
+                  at_rest: bool, sim_time: float, wall: float, scale: float = 1.0) -> ContactRest:
+    """Sum ``contacts`` (finger-frame point, element, normal force, force vector, penetration),
+    each force times ``scale`` (2 for the symmetric half mesh, whose mirror half carries as much)."""
+    normal = scale * sum(c[2] for c in contacts)
+    vec = scale * sum((c[3] for c in contacts), np.zeros(3))
+    return ContactRest(
+        model=model, tension=float(tension), cable_tension=cable, normal_force=float(normal),
+        resultant_force=float(math.hypot(vec[0], vec[2])),
+        contact_x=tuple(sorted({round(float(c[0][0]), 4) for c in contacts if c[2] > 0})),
+        contact_elements=tuple(sorted({int(c[1]) for c in contacts if c[2] > 0})),
+        element_angles_deg=tuple(float(a) for a in angles_deg),
+        penetration=float(max((c[4] for c in contacts), default=0.0)),
+        at_rest=at_rest, sim_time=sim_time, wall_time_s=wall)
+
+
+def blocked_tip_force_chain(params: GripperParams | None, tensions) -> np.ndarray:
+    """The stop's reaction on the hinge chain's blocked tip at rest [N], one per tension [N]
+    (:func:`chain_contact` against :func:`tip_stop`). 0 where the tip slipped off the stop:
+    past about 0.07 N on the default design the chain has no blocked equilibrium
+    (``docs/calibration.md``, "The finger in contact")."""
+    stop = tip_stop(params)
+    return np.array([chain_contact(params, float(t), stop).normal_force for t in tensions])
+
+
+def cylinder_contact_chain(params: GripperParams | None, diameter: float, tension: float) -> ContactRest:
+    """The hinge chain closing on :func:`middle_cylinder` of ``diameter`` [m] at ``tension``
+    [N], at rest."""
+    return chain_contact(params, tension, middle_cylinder(params, diameter))

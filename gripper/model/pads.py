@@ -106,10 +106,15 @@ class PadSpring:
 
 
 def pad_spring(p: GripperParams) -> PadSpring:
-    """The piecewise-linear interpolant of :func:`hertz_law` through the knots (see the module)."""
+    """The piecewise-linear interpolant of :func:`hertz_law` through the knots (see the module),
+    up to ``contact.fit_force_max`` or the force at which the pad bottoms out (:func:`pad_depth`:
+    11.2 N for the default cable finger, 7.1 N for the pneumatic one), whichever is lower; past
+    it, the last chord's slope."""
     law = hertz_law(p)
-    n = max(1, math.ceil(math.log(p.contact.fit_force_max / KNOT_FORCE_MIN, KNOT_FORCE_RATIO)))
-    forces = KNOT_FORCE_MIN * KNOT_FORCE_RATIO ** np.arange(n + 1)
+    # up to the fit's top force or where the pad bottoms out, whichever comes first
+    top = min(p.contact.fit_force_max, float(law.force(pad_depth(p))))
+    n = max(1, math.ceil(math.log(top / KNOT_FORCE_MIN, KNOT_FORCE_RATIO)))
+    forces = np.minimum(KNOT_FORCE_MIN * KNOT_FORCE_RATIO ** np.arange(n + 1), top)
     delta = np.concatenate([[0.0], law.indentation(forces)])
     f = np.concatenate([[0.0], forces])
     slopes = np.diff(f) / np.diff(delta)

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import math
+
 import mujoco
 
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.model.builders import build_gripper_spec, build_scene_spec
-from gripper.model.closure import tune_closure_limits
+from gripper.model.closure import MIN_STEPS, RIGID_STOP_SOLIMP, tune_closure_limits
 from gripper.objects.grasp_object import GraspObject
 from gripper.objects.scene_objects import Placement, add_object
 from gripper.sim.canonical import apply_canonical_constants
@@ -30,6 +32,7 @@ def _as_trials_run(spec: mujoco.MjSpec, p: GripperParams, key: str) -> mujoco.Mj
     their design under that integrator (:mod:`gripper.model.closure`; the match is computed
     once per design and process, then reused)."""
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
+    hold_step_floors(spec, p)
     if key not in _LIMITS:
         tune_closure_limits(spec, p, spec.compile())
         if len(_LIMITS) >= _LIMITS_KEPT:
@@ -41,6 +44,24 @@ def _as_trials_run(spec: mujoco.MjSpec, p: GripperParams, key: str) -> mujoco.Mj
         j.solref_limit = solref
         j.solimp_limit = solimp
     return spec
+
+
+def hold_step_floors(spec: mujoco.MjSpec, p: GripperParams) -> None:
+    """The stiffnesses that the builders floor at a few time steps (the cable's stretch at two,
+    the rigid stops at ``MIN_STEPS``: MuJoCo's stability floor) floored at the trials' step
+    instead, whatever step this scene takes: a finer step then resolves the same model rather
+    than a stiffer one. At 0.5 ms the cable was 3.7 times and the rigid stops 16 times stiffer
+    than at the trials' 2 ms, and the squeeze moved with the step (docs/contact.md)."""
+    step = max(p.sim.timestep, TRIAL_TIMESTEP)
+    floors = {"_cable": 2.0 * step, "_stops": MIN_STEPS * step}
+    for t in spec.tendons:
+        for suffix, floor in floors.items():
+            if t.name.endswith(suffix) and t.solref_limit[0] < floor:
+                t.solref_limit = [round(floor, 6), float(t.solref_limit[1])]
+    rigid = MIN_STEPS * p.sim.timestep
+    for j in spec.joints:
+        if math.isclose(j.solref_limit[0], rigid) and list(j.solimp_limit) == list(RIGID_STOP_SOLIMP):
+            j.solref_limit = [round(MIN_STEPS * step, 6), float(j.solref_limit[1])]
 
 
 def trial_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
