@@ -46,8 +46,8 @@ def main() -> None:
             ok = [r for r in recs if r.status == "ok"]
             squeeze[dt] = statistics.median(r.peak_total_force_N for r in ok)
             held[dt] = sum(bool(r.success) for r in recs)
-            pulls = [run_pullout(obj, params=p, protocol=proto,
-                                 placement=sample_placement(get_object(obj), TrialNoise(), a.seed, i)) for i in range(a.pullout_trials)]
+            places = [sample_placement(get_object(obj), TrialNoise(), a.seed, i) for i in range(a.pullout_trials)]
+            pulls = [run_pullout(obj, params=p, protocol=proto, placement=pl) for pl in places]
             holding[dt] = statistics.median(r["holding_force_N"] for r in pulls)
         for name, vals in (("peak squeeze N", squeeze), ("holding force N", holding)):
             v = [vals[dt] for dt in STEPS]

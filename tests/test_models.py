@@ -6,6 +6,7 @@ from gripper.core.resources import MODEL_DIR as REPO_MODELS
 from gripper.experiments.smoke import random_control_rollout
 from gripper.model.builders import build_scene_spec
 from gripper.model.closure import teeth_lock_angle
+from gripper.model.pads import pad_spring
 from gripper.sim.model_files import generate_model_files, readme_with_table
 
 
@@ -66,8 +67,10 @@ def test_the_committed_files_use_classes_and_materials():
 
 def test_committed_scene_loads():
     m = mujoco.MjModel.from_xml_path(str(REPO_MODELS / "scene.xml"))
-    # 4 cables (spatial) and one stop tendon (fixed) per hinge: 4 fingers x 5 hinges
-    assert m.nu == 7 and m.ntendon == 4 + 20
+    # 4 cables (spatial), one stop tendon (fixed) per hinge (4 fingers x 5 hinges) and the pads'
+    # knot springs (one fixed tendon per knot past the first, 24 pads)
+    knots = len(pad_spring(GripperParams()).knots)
+    assert m.nu == 7 and m.ntendon == 4 + 20 + 24 * (knots - 1)
     assert sum(m.tendon(i).name.endswith("_cable") for i in range(m.ntendon)) == 4
     names = [m.sensor(i).name for i in range(m.nsensor)]
     assert "f0_cable_tension" in names and "f3_seg6_pad" in names

@@ -49,9 +49,10 @@ from gripper.core.params import GripperParams
 from gripper.core.resources import DEFAULT_CALIBRATION_DIR
 from gripper.model.builders import build_bending_spec
 from gripper.model.names import FingerNames
+from gripper.references.continuum import ReferenceConfig, ReferenceFinger, kabsch_angles
 from gripper.references.convergence import MEASURE_SCALE, solve_clamped
 from gripper.references.finger_mesh import MeshResolution, finger_mesh
-from gripper.sim.stability import check_stable
+from gripper.sim.stability import SimulationUnstable, check_stable
 
 CLAMP_LENGTH = 0.008  # m, the reference's clamp (ReferenceConfig.clamp_length)
 # Tensions of the blocked-tip comparison [N]: the small-load range where both models stay
@@ -118,8 +119,6 @@ def blocked_tip_linear(params: GripperParams | None = None, mesh: MeshResolution
     """
     import skfem
     from skfem.models.elasticity import lame_parameters, linear_elasticity
-
-    from gripper.references.continuum import kabsch_angles
 
     t0 = time.perf_counter()
     p = (params or GripperParams()).validate()
@@ -416,3 +415,139 @@ def cylinder_contact_chain(params: GripperParams | None, diameter: float, tensio
     """The hinge chain closing on :func:`middle_cylinder` of ``diameter`` [m] at ``tension``
     [N], at rest."""
     return chain_contact(params, tension, middle_cylinder(params, diameter))
+
+
+# -- the continuum body (MuJoCo flex) ----------------------------------------------------------
+
+FLEX_RADIUS = 0.0002  # m: the reference flex's collision radius (continuum._flexcomp_xml's)
+FLEX_RAMP_TIME = 0.5  # s: the tension's ramp from 0 (5 ms steps, first mode critically damped)
+FLEX_MAX_TIME = 10.0  # s of simulated time
+# The flex's contact: stiffness and damping given directly (MuJoCo's negative solref, per unit
+# of the contact's effective mass). The time-constant form at two 5 ms steps let the light
+# edge nodes sink 46 µm into the stop at 0.005 N (0.6 % of the blocked force); this one, 1 µm.
+FLEX_CONTACT_SOLREF = (-1.0e6, -2.0e3)
+
+
+def _flex_contact_xml(ref, obstacle: Obstacle) -> str:
+    """The continuum reference's flexcomp (as :mod:`gripper.references.continuum` writes it)
+    with contact switched on against ``obstacle``, a world geom, frictionless and stiff. The
+    obstacle is moved off the body by the flex's collision radius, which inflates its surface."""
+    p, mesh, cfg = ref.p, ref.mesh, ref.cfg
+    cx, cz = obstacle.centre_xz
+    solref = " ".join(f"{v:g}" for v in FLEX_CONTACT_SOLREF)
+    solimp = " ".join(f"{v:g}" for v in CONTACT_SOLIMP)
+    contact = f'condim="1" priority="1" friction="0 0 0" solref="{solref}" solimp="{solimp}"'
+    if obstacle.kind == "plane":
+        geom = (f'<geom name="obstacle" type="plane" size="0.05 0.05 0.01" pos="{cx:.9g} 0 '
+                f'{cz + FLEX_RADIUS:.9g}" zaxis="0 0 -1" {contact}/>')
+    else:
+        geom = (f'<geom name="obstacle" type="cylinder" size="{obstacle.radius:.9g} {p.finger.width:.9g}" '
+                f'pos="{cx:.9g} 0 {cz:.9g}" zaxis="0 1 0" {contact}/>')
+    mass = p.material.density * mesh.volume()
+    pts = " ".join(f"{v:.9g}" for v in mesh.points.ravel())
+    elem = " ".join(str(i) for i in mesh.tets.ravel())
+    pin = " ".join(str(i) for i in ref.pinned)
+    return f"""<mujoco model="finger_reference_contact">
+  <option timestep="{cfg.timestep}" integrator="discrete" solver="Newton"
+          iterations="{cfg.solver_iterations}" tolerance="{cfg.solver_tolerance:g}" gravity="0 0 0"/>
+  <worldbody>
+    {geom}
+    <body name="clamp">
+      <flexcomp name="body" type="direct" dim="3" point="{pts}" element="{elem}"
+                mass="{mass:.9g}" radius="{FLEX_RADIUS}">
+        <contact contype="1" conaffinity="1" selfcollide="none" condim="1"/>
+        <elasticity young="{p.material.youngs_modulus * cfg.modulus_factor:.9g}" poisson="{p.material.poisson_ratio}"
+                    damping="{cfg.mesh_mode_damping:.9g}"/>
+        <pin id="{pin}"/>
+      </flexcomp>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+
+class ContactReference(ReferenceFinger):
+    """The continuum reference (:class:`ReferenceFinger`: mesh, lumped masses, damping,
+    symmetry plane, cable) with ``obstacle`` in its scene and contact on between the two. The
+    cut faces still do not touch each other: tensions must keep the cuts open."""
+
+    def __init__(self, params: GripperParams | None, config: ReferenceConfig, obstacle: Obstacle):
+        self.obstacle = obstacle
+        super().__init__(params, config)
+
+    def _build(self) -> None:
+        self.model = mujoco.MjModel.from_xml_string(_flex_contact_xml(self, self.obstacle))
+        self.data = mujoco.MjData(self.model)
+        free = np.ones(self.mesh.n_nodes, dtype=bool)
+        free[self.pinned] = False
+        self.body_of_node = np.full(self.mesh.n_nodes, -1)
+        for i in np.flatnonzero(free):
+            self.body_of_node[i] = self.model.body(f"body_{i}").id
+        self.free = free
+        self._set_lumped_mass_and_damping()
+        self._hold_symmetry_plane()
+
+
+def continuum_contact(params: GripperParams | None, tension: float, obstacle: Obstacle, *,
+                      modulus_factor: float | None = None, mesh: MeshResolution | None = None,
+                      rest_tol_deg: float | None = None) -> ContactRest:
+    """The continuum reference (MuJoCo flex, :class:`ContactReference`) with ``obstacle`` in
+    its scene and the cable at ``tension`` [N], relaxed to rest: the relaxation of
+    ``gripper.references.continuum_checks`` (5 ms implicit steps, first mode critically
+    damped), the tension ramped over ``FLEX_RAMP_TIME``, at rest when the bending moves less
+    than ``rest_tol_deg`` over half a second (default ``REST_TOL_DEG``, 0.02°; at most
+    ``FLEX_MAX_TIME``). The contact forces of the half mesh are doubled. ``modulus_factor``:
+    default :func:`committed_modulus_factor`.
+
+    Raises:
+        ValueError: a cut closed (the body has no contact between cut faces).
+        SimulationUnstable: MuJoCo warned or the state became non-finite.
+    """
+    from gripper.references.continuum_checks import REST_TOL_DEG, relax_to_rest, relaxation_config
+
+    t0 = time.perf_counter()
+    factor = committed_modulus_factor() if modulus_factor is None else float(modulus_factor)
+    cfg = relaxation_config(ReferenceConfig(mesh=mesh or MeshResolution(), modulus_factor=factor))
+    ref = ContactReference(params, cfg, obstacle)
+    g = ref.p.finger
+    at_rest = True
+    try:
+        tol = REST_TOL_DEG if rest_tol_deg is None else rest_tol_deg
+        angles, _, _ = relax_to_rest(ref, tension, ramp_time=FLEX_RAMP_TIME, rest_tol_deg=tol,
+                                     max_time=FLEX_MAX_TIME, what="contact check (continuum)")
+    except SimulationUnstable as err:
+        if "not at rest" not in str(err):
+            raise
+        at_rest = False
+        angles, _ = ref.measure(ref.node_positions())
+    hinge = np.degrees(np.diff(angles))
+    if hinge.max() > g.closure_angle_deg:
+        raise ValueError(f"contact check (continuum): at {tension:g} N a hinge turned {hinge.max():.1f}°, past "
+                         f"the cut's closure {g.closure_angle_deg:.1f}°; the body has no contact between "
+                         f"cut faces: use a smaller tension")
+    m, d = ref.model, ref.data
+    geom = m.geom("obstacle").id
+    tets = ref.mesh.tets
+    members = [set(nodes.tolist()) for nodes in ref.mesh.nodes_of_element]
+    contacts = []
+    for i in range(d.ncon):
+        c = d.contact[i]
+        if geom not in (c.geom[0], c.geom[1]):
+            continue
+        side = 1 if c.geom[0] == geom else 0  # the flex's side: a vertex or an element of it
+        nodes = ({int(c.vert[side])} if c.vert[side] >= 0
+                 else set(tets[c.elem[side]].tolist()) if c.elem[side] >= 0 else set())
+        element = next((e + 1 for e, mem in enumerate(members) if nodes and nodes <= mem), 0)
+        f6 = np.zeros(6)
+        mujoco.mj_contactForce(m, d, i, f6)
+        normal = c.frame[:3] * (1.0 if side == 1 else -1.0)  # onto the obstacle
+        contacts.append((c.pos.copy(), element, f6[0], f6[0] * normal, -c.dist))
+    share = 0.5 if ref.mesh.symmetric else 1.0
+    return _contact_rest("continuum", tension, tension, contacts, np.degrees(angles - angles[0]), at_rest,
+                         float(d.time), time.perf_counter() - t0, scale=1.0 / share)
+
+
+def cylinder_contact_continuum(params: GripperParams | None, diameter: float, tension: float,
+                               **kwargs) -> ContactRest:
+    """The continuum reference closing on :func:`middle_cylinder` of ``diameter`` [m] at
+    ``tension`` [N], at rest (:func:`continuum_contact`; about 2-4 minutes on one core)."""
+    return continuum_contact(params, tension, middle_cylinder(params, diameter, clearance=FLEX_RADIUS), **kwargs)

@@ -4,9 +4,12 @@ the demonstrator of reinforcement learning's demonstrations (``gripper train --d
 It does what the grasp benchmark's protocol does, decided from the observation alone (no
 clock), so that a network can imitate it: with ``xy_actions`` it moves the palm over the
 object (``object_pos_rel_palm``); it lowers the palm until the fingertips are 8 mm above the
-floor; it then reels all cables in at 2 rad/s of spool to 3.0 rad (the protocol's closing rate
-and the object library's rigid closing angle), and once the servo set-point is there it lifts
-the palm to its home height at the palm's full speed and holds. Each phase is read from the
+floor; it then reels all cables in at 2 rad/s of spool (the protocol's closing rate) until every
+finger's sensed spool tension reaches the protocol's set-point (5 N, as the benchmark's grasp
+controller), or to 3.0 rad (the object library's rigid closing angle), and then it lifts the palm
+to its home height at the palm's full speed and holds. (Until 0.16.0 it always reeled to
+3.0 rad, where the servos stall: with 0.17.0's pads, stiff as the silicone, that squeezed the
+cylinder to its 200 N damage limit.) Each phase is read from the
 observed set-points (``servo_setpoint``, ``palm_setpoint``), which the environment integrates
 from the velocity actions, so the state says where in the grasp the policy is.
 
@@ -28,6 +31,9 @@ from gripper.envs.task import observation_divisor, observation_structure
 from gripper.objects.library import RIGID_CLOSE as CLOSE_ANGLE  # rad: rigid objects' closing angle
 
 CENTRED = 0.002         # m: the palm counts as over the object within this horizontal distance
+# rad: a servo set-point past the reel's slack and the fingers' first curl; with the palm above
+# the grasp height it says the grasp is being lifted
+LIFTING_ANGLE = 0.5
 
 
 class ScriptedGrasp:
@@ -66,8 +72,13 @@ class ScriptedGrasp:
         servo_sp = self._part(obs, "servo_setpoint").mean(axis=1)
         palm_sp = self._part(obs, "palm_setpoint")
         rel = self._part(obs, "object_pos_rel_palm")
-        closed = servo_sp >= CLOSE_ANGLE - 1e-6
+        tension = self._part(obs, "sensed_spool_tension")
         low = palm_sp[:, 2] <= self.z_grasp + 0.5 * self.palm_step
+        # gripped: every finger's sensed tension at the protocol's set-point (the benchmark's
+        # controller), or the servos at the closing angle; lifting: the fingers closed and the palm
+        # above the grasp height (stateless: the observation alone tells the phase)
+        gripped = (tension.min(axis=1) >= HELD.grip_tension) | (servo_sp >= CLOSE_ANGLE - 1e-6)
+        closed = gripped | (~low & (servo_sp >= LIFTING_ANGLE))
         a = np.zeros((len(obs), self.cfg.action_size), dtype=np.float32)
         # servo: close at the protocol's rate once the palm is down, then hold
         close = np.clip((CLOSE_ANGLE - servo_sp) / self.servo_step, 0.0, self.close_action)

@@ -25,8 +25,8 @@ springs on their light bodies are stable at the trials' 2 ms. Derivation and che
 Example:
     >>> from gripper.core.params import GripperParams
     >>> law = hertz_law(GripperParams())
-    >>> round(law.indentation(2.0) * 1e3, 2)      # mm under 2 N
-    0.7
+    >>> round(float(law.indentation(2.0)) * 1e3, 2)      # mm under 2 N
+    0.95
 """
 
 from __future__ import annotations
@@ -129,15 +129,28 @@ def pad_damping(p: GripperParams, element_mass: float) -> float:
     return 2.0 * p.contact.damping_ratio * math.sqrt(k1 * element_mass)
 
 
+# Mesh vertices are kept to the hull's corners and rounded to a micrometre, so the model files
+# (gripper.sim.model_files) hold exactly the numbers the trials compile.
+VERTEX_GRID = 1e-6  # m
+
+
+def hull_vertices(points: np.ndarray) -> np.ndarray:
+    """The convex hull's vertices of ``points``, on a :data:`VERTEX_GRID` grid [m]."""
+    from scipy.spatial import ConvexHull
+
+    grid = np.round(np.asarray(points, dtype=float) / VERTEX_GRID) * VERTEX_GRID
+    return grid[ConvexHull(grid).vertices]
+
+
 def cable_pad_vertices(p: GripperParams, profile: np.ndarray) -> np.ndarray:
     """A cable element's collision surface: its prism, every edge rounded to ``contact.edge_radius``."""
-    return rounded_prism(profile, p.finger.width, p.contact.edge_radius)
+    return hull_vertices(rounded_prism(profile, p.finger.width, p.contact.edge_radius))
 
 
 def pneumatic_pad_vertices(p: GripperParams, section: np.ndarray, length: float) -> np.ndarray:
     """A pneumatic segment's collision surface: its section swept over its length, the section's
     corners rounded to ``contact.pneumatic_edge_radius`` (the round back is already round)."""
-    return rounded_sweep(section, length, p.contact.pneumatic_edge_radius)
+    return hull_vertices(rounded_sweep(section, length, p.contact.pneumatic_edge_radius))
 
 
 def _convex_volume(vertices: np.ndarray) -> float:
@@ -215,6 +228,6 @@ def add_pad_meshes(spec: mujoco.MjSpec, p: GripperParams) -> None:
                       uservert=cable_pad_vertices(p, element_profile(p.finger, kind)).ravel().tolist())
 
 
-__all__ = ["KNOT_FORCE_MIN", "KNOT_FORCE_RATIO", "PAD_EXTENSION", "HertzLaw", "PadMaker", "PadSpring",
-           "add_pad_meshes", "cable_pad_vertices", "hertz_law", "pad_damping", "pad_depth", "pad_spring",
-           "pneumatic_pad_vertices"]
+__all__ = ["KNOT_FORCE_MIN", "KNOT_FORCE_RATIO", "PAD_EXTENSION", "VERTEX_GRID", "HertzLaw", "PadMaker",
+           "PadSpring", "add_pad_meshes", "cable_pad_vertices", "hertz_law", "hull_vertices", "pad_damping",
+           "pad_depth", "pad_spring", "pneumatic_pad_vertices"]

@@ -34,7 +34,7 @@ def main() -> None:
     print(f"{'object':<10} {'solver':>8} {'pads':>8} {'ratio':>6}")
     for obj in a.objects.split(","):
         times: dict[str, list[float]] = {m: [] for m in params}
-        for m, p in params.items():
+        for p in params.values():
             run_trial(obj, seed=a.seed, index=0, params=p)  # warm the per-process caches
         for i in range(1, a.trials + 1):
             for m, p in params.items():
