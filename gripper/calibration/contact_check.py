@@ -262,9 +262,10 @@ def middle_cylinder(params: GripperParams | None, diameter: float, *, clearance:
 # -- the hinge chain ----------------------------------------------------------------------------
 
 CHAIN_RAMP_TIME = 2.0  # s: the tension's ramp from 0
-CHAIN_CHUNK_TIME = 0.5  # s: rest is checked after every chunk
+CHAIN_CHUNK_TIME = 1.0  # s: forces and angles are averaged over each chunk
 CHAIN_MAX_TIME = 120.0  # s of simulated time
-CHAIN_REST_DEG = 1e-3  # deg: at rest when no hinge moves more than this over a chunk
+CHAIN_REST_DEG = 2e-3  # deg: at rest when no hinge's chunk mean moves more than this ...
+CHAIN_REST_FORCE = 2e-3  # -: ... and the mean contact force by less than this fraction
 
 
 @dataclass(frozen=True)
@@ -278,14 +279,17 @@ class ContactRest:
             continuum's applied value) [N].
         normal_force: the contacts' normal forces summed, the whole body's [N].
         resultant_force: magnitude of the contact forces' resultant in the bending plane [N].
-        contact_x: finger-frame x of the contact points at rest, distinct to 0.1 mm [m]; empty
-            when the finger is not touching.
-        contact_elements: the elements (1 = B1) in contact.
+        contact_elements: the elements (1 = B1) in contact; empty when none touches.
+        element_forces: each one's normal force, the whole body's [N].
+        contact_xz: each one's contact point, the normal-force-weighted mean of its contacts'
+            points, finger frame x and z [m].
         element_angles_deg: each element's rotation from straight, B1 first [deg].
         penetration: the deepest contact's penetration [m].
         at_rest: the rest criterion was met within the time limit.
         sim_time: simulated time [s].
         wall_time_s: [s].
+        force_fluctuation: standard deviation of the normal force over the averaging window
+            (the chain's last chunk; 0 for the continuum, read once at rest) [N].
     """
 
     model: str
@@ -293,13 +297,15 @@ class ContactRest:
     cable_tension: float
     normal_force: float
     resultant_force: float
-    contact_x: tuple[float, ...]
     contact_elements: tuple[int, ...]
+    element_forces: tuple[float, ...]
+    contact_xz: tuple[tuple[float, float], ...]
     element_angles_deg: tuple[float, ...]
     penetration: float
     at_rest: bool
     sim_time: float
     wall_time_s: float
+    force_fluctuation: float = 0.0
 
     @property
     def hinge_angles_deg(self) -> tuple[float, ...]:
@@ -320,9 +326,11 @@ def chain_contact(params: GripperParams | None, tension: float, obstacle: Obstac
 
     The servo is off (actuation disabled) and the reel's slide joint is pulled with a constant
     generalised force equal to the tension, ramped over ``CHAIN_RAMP_TIME``; the rope's tendon
-    limit carries it to the finger. At rest when no hinge moves more than ``CHAIN_REST_DEG``
-    over ``CHAIN_CHUNK_TIME`` (at most ``CHAIN_MAX_TIME``). The finger frame is the mount's:
-    world x is finger x, world y is finger z, world z is 0.1 m less finger y.
+    limit carries it to the finger. Forces and angles are the means over a chunk of
+    ``CHAIN_CHUNK_TIME`` (the contact force of a convex element's edge on a cylinder, from
+    MuJoCo's convex collision, chatters step to step; its mean is what holds the finger), and
+    the finger is at rest when two chunks' means agree (``CHAIN_REST_DEG``, ``CHAIN_REST_FORCE``;
+    at most ``CHAIN_MAX_TIME``).
     """
     t0 = time.perf_counter()
     p = (params or GripperParams()).validate()
@@ -351,55 +359,89 @@ def chain_contact(params: GripperParams | None, tension: float, obstacle: Obstac
     m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
     reel = m.joint(names.reel).dofadr[0]
     hq = np.array([m.joint(h).qposadr[0] for h in names.hinges])
-    dofs = np.array([m.joint(h).dofadr[0] for h in names.hinges] + [reel])
     sensor = m.sensor(f"{names.cable}_tension").adr[0]
-    geom = m.geom("obstacle").id
+    gid = m.geom("obstacle").id
     seg_of_body = {m.body(b).id: k + 1 for k, b in enumerate(names.bodies)}
     chunk = int(round(CHAIN_CHUNK_TIME / m.opt.timestep))
     at_rest = False
+    previous = None
     while d.time < CHAIN_MAX_TIME:
-        before = d.qpos[hq].copy()
-        for _ in range(chunk):
+        forces, angles = np.zeros(chunk), np.zeros((chunk, len(hq)))
+        sums = _ContactSums()
+        for k in range(chunk):
             d.qfrc_applied[reel] = tension * min(1.0, d.time / CHAIN_RAMP_TIME)
             mujoco.mj_step(m, d)
+            contacts = _chain_contacts(m, d, gid, mount, seg_of_body)
+            forces[k] = sum(c[2] for c in contacts)
+            angles[k] = d.qpos[hq]
+            sums.add(contacts, 1.0 / chunk)
         check_stable(m, d, "contact check (chain)")
-        moved = np.degrees(np.abs(d.qpos[hq] - before)).max()
-        if d.time > CHAIN_RAMP_TIME and moved < CHAIN_REST_DEG and np.abs(d.qvel[dofs]).max() < 1e-3:
+        mean_q, mean_f = np.degrees(angles.mean(axis=0)), float(forces.mean())
+        if (previous is not None and d.time > CHAIN_RAMP_TIME + CHAIN_CHUNK_TIME
+                and np.abs(mean_q - previous[0]).max() < CHAIN_REST_DEG
+                and abs(mean_f - previous[1]) <= CHAIN_REST_FORCE * max(abs(mean_f), 1e-12)):
             at_rest = True
             break
-    mujoco.mj_forward(m, d)
-    to_finger = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]).T  # world -> finger
-    contacts = []
+        previous = (mean_q, mean_f)
+    return sums.rest("chain", tension, float(d.sensordata[sensor]),
+                     np.concatenate([[0.0], np.cumsum(mean_q)]), at_rest, float(d.time),
+                     time.perf_counter() - t0, force_fluctuation=float(forces.std()))
+
+
+def _chain_contacts(m: mujoco.MjModel, d: mujoco.MjData, gid: int, mount: np.ndarray,
+                    seg_of_body: dict[int, int]) -> list:
+    """The obstacle's contacts in the chain: (finger-frame point, element, normal force, force
+    vector onto the obstacle in the finger frame, penetration) each. The mount's frame: world x
+    is finger x, world y finger z, world z 0.1 m less finger y."""
+    out = []
+    f6 = np.zeros(6)
     for i in range(d.ncon):
         c = d.contact[i]
-        if geom not in (c.geom1, c.geom2):
+        if gid not in (c.geom1, c.geom2):
             continue
-        other = c.geom2 if c.geom1 == geom else c.geom1
-        f6 = np.zeros(6)
+        other = c.geom2 if c.geom1 == gid else c.geom1
         mujoco.mj_contactForce(m, d, i, f6)
-        normal = c.frame[:3] * (1.0 if c.geom2 == geom else -1.0)  # onto the obstacle
-        contacts.append((to_finger @ (c.pos - mount), seg_of_body.get(int(m.geom_bodyid[other]), 0),
-                         f6[0], f6[0] * (to_finger @ normal), -c.dist))
-    q = d.qpos[hq]
-    return _contact_rest("chain", tension, float(d.sensordata[sensor]), contacts,
-                         np.degrees(np.concatenate([[0.0], np.cumsum(q)])), at_rest, float(d.time),
-                         time.perf_counter() - t0)
+        normal = _TO_FINGER @ (c.frame[:3] * (1.0 if c.geom2 == gid else -1.0))  # onto the obstacle
+        out.append((_TO_FINGER @ (c.pos - mount), seg_of_body.get(int(m.geom_bodyid[other]), 0),
+                    float(f6[0]), f6[0] * normal, -float(c.dist)))
+    return out
 
 
-def _contact_rest(model: str, tension: float, cable: float, contacts: list, angles_deg: np.ndarray,
-                  at_rest: bool, sim_time: float, wall: float, scale: float = 1.0) -> ContactRest:
-    """Sum ``contacts`` (finger-frame point, element, normal force, force vector, penetration),
-    each force times ``scale`` (2 for the symmetric half mesh, whose mirror half carries as much)."""
-    normal = scale * sum(c[2] for c in contacts)
-    vec = scale * sum((c[3] for c in contacts), np.zeros(3))
-    return ContactRest(
-        model=model, tension=float(tension), cable_tension=cable, normal_force=float(normal),
-        resultant_force=float(math.hypot(vec[0], vec[2])),
-        contact_x=tuple(sorted({round(float(c[0][0]), 4) for c in contacts if c[2] > 0})),
-        contact_elements=tuple(sorted({int(c[1]) for c in contacts if c[2] > 0})),
-        element_angles_deg=tuple(float(a) for a in angles_deg),
-        penetration=float(max((c[4] for c in contacts), default=0.0)),
-        at_rest=at_rest, sim_time=sim_time, wall_time_s=wall)
+_TO_FINGER = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])  # world -> finger frame (rows)
+
+
+class _ContactSums:
+    """Contacts (finger-frame point, element, normal force, force vector onto the obstacle,
+    penetration), summed per element with weights: a mean over steps, or a scale (2 for the
+    symmetric half mesh, whose mirror half carries as much)."""
+
+    def __init__(self) -> None:
+        self.force: dict[int, float] = {}
+        self.moment: dict[int, np.ndarray] = {}
+        self.vector = np.zeros(3)
+        self.penetration = 0.0
+
+    def add(self, contacts: list, weight: float) -> None:
+        for point, element, normal, vector, depth in contacts:
+            self.force[element] = self.force.get(element, 0.0) + weight * normal
+            self.moment[element] = self.moment.get(element, np.zeros(3)) + weight * normal * point
+            self.vector += weight * vector
+            self.penetration = max(self.penetration, depth)
+
+    def rest(self, model: str, tension: float, cable: float, angles_deg: np.ndarray, at_rest: bool,
+             sim_time: float, wall: float, force_fluctuation: float = 0.0) -> ContactRest:
+        touching = sorted(e for e, f in self.force.items() if f > 0)
+        xz = [self.moment[e][[0, 2]] / self.force[e] for e in touching]
+        return ContactRest(
+            model=model, tension=float(tension), cable_tension=cable,
+            normal_force=float(sum(self.force.values())),
+            resultant_force=float(math.hypot(self.vector[0], self.vector[2])),
+            contact_elements=tuple(int(e) for e in touching),
+            element_forces=tuple(float(self.force[e]) for e in touching),
+            contact_xz=tuple((float(x), float(z)) for x, z in xz),
+            element_angles_deg=tuple(float(a) for a in angles_deg),
+            penetration=float(self.penetration), at_rest=at_rest, sim_time=sim_time,
+            wall_time_s=wall, force_fluctuation=force_fluctuation)
 
 
 def blocked_tip_force_chain(params: GripperParams | None, tensions) -> np.ndarray:
@@ -541,9 +583,10 @@ def continuum_contact(params: GripperParams | None, tension: float, obstacle: Ob
         mujoco.mj_contactForce(m, d, i, f6)
         normal = c.frame[:3] * (1.0 if side == 1 else -1.0)  # onto the obstacle
         contacts.append((c.pos.copy(), element, f6[0], f6[0] * normal, -c.dist))
-    share = 0.5 if ref.mesh.symmetric else 1.0
-    return _contact_rest("continuum", tension, tension, contacts, np.degrees(angles - angles[0]), at_rest,
-                         float(d.time), time.perf_counter() - t0, scale=1.0 / share)
+    sums = _ContactSums()
+    sums.add(contacts, 2.0 if ref.mesh.symmetric else 1.0)
+    return sums.rest("continuum", tension, tension, np.degrees(angles - angles[0]), at_rest, float(d.time),
+                     time.perf_counter() - t0)
 
 
 def cylinder_contact_continuum(params: GripperParams | None, diameter: float, tension: float,

@@ -89,13 +89,20 @@ def rounded_prism(profile_xz: np.ndarray, width: float, radius: float,
 
 
 def rounded_sweep(section_yz: np.ndarray, length: float, radius: float,
-                  n_arc: int = ARC_POINTS) -> np.ndarray:
+                  n_arc: int = ARC_POINTS, round_ends: bool = False) -> np.ndarray:
     """Points (n, 3) of the convex cross-section ``section_yz`` (y, z; counter-clockwise) swept
-    along x over [0, ``length``], its long edges rounded to ``radius`` in the section's plane (the
-    ends stay flat)."""
+    along x over [0, ``length``], its long edges rounded to ``radius`` in the section's plane;
+    ``round_ends``: the end faces' edges too (a ball swept over the body shrunk by ``radius``),
+    else the ends stay flat."""
     core = inset_polygon(section_yz, radius)
-    ring = core if radius == 0 else (core[:, None, :] + radius * _arc_directions(n_arc)[None]).reshape(-1, 2)
-    return np.vstack([np.column_stack([np.full(len(ring), x), ring]) for x in (0.0, length)])
+    if radius == 0 or not round_ends:
+        ring = core if radius == 0 else (core[:, None, :] + radius * _arc_directions(n_arc)[None]).reshape(-1, 2)
+        return np.vstack([np.column_stack([np.full(len(ring), x), ring]) for x in (0.0, length)])
+    if 2.0 * radius >= length:
+        raise ValueError(f"rounded_sweep: radius {radius:g} m must be below half the length {length:g} m")
+    corners = np.vstack([np.column_stack([np.full(len(core), x), core]) for x in (radius, length - radius)])
+    ball = radius * _ball_directions(n_arc)[:, [2, 0, 1]]  # the ball's axis along x
+    return (corners[:, None, :] + ball[None, :, :]).reshape(-1, 3)
 
 
 __all__ = ["ARC_POINTS", "inset_polygon", "rounded_prism", "rounded_sweep"]

@@ -148,9 +148,11 @@ def cable_pad_vertices(p: GripperParams, profile: np.ndarray) -> np.ndarray:
 
 
 def pneumatic_pad_vertices(p: GripperParams, section: np.ndarray, length: float) -> np.ndarray:
-    """A pneumatic segment's collision surface: its section swept over its length, the section's
-    corners rounded to ``contact.pneumatic_edge_radius`` (the round back is already round)."""
-    return hull_vertices(rounded_sweep(section, length, p.contact.pneumatic_edge_radius))
+    """A pneumatic segment's collision surface: its section swept over its length, every edge
+    (the section's corners and the end faces' rims) rounded to ``contact.pneumatic_edge_radius``
+    (the round back is already round). The fingertip grasp runs the tip's end face along the
+    table into the part, so its rim meets films first."""
+    return hull_vertices(rounded_sweep(section, length, p.contact.pneumatic_edge_radius, round_ends=True))
 
 
 def _convex_volume(vertices: np.ndarray) -> float:
