@@ -3,30 +3,41 @@
 Two tests, each run on the hinge chain (:func:`gripper.model.builders.build_bending_spec`: one
 finger clamped at B1, bending in the horizontal plane, grasping face towards world +y) and on
 the continuum reference's discretisation of the same body
-(:func:`gripper.references.finger_mesh.finger_mesh`, clamped over ``clamp_length`` as in
-:func:`gripper.references.convergence.linear_compliance`):
+(:func:`gripper.references.finger_mesh.finger_mesh`, clamped over ``CLAMP_LENGTH`` as in
+:func:`gripper.references.convergence.linear_compliance`). Finger frame throughout: x along the
+finger, z towards the grasping face, y across (the hinge axes).
 
 * **Blocked tip.** The finger straight, a rigid frictionless stop touching the tip element's
-  distal edge on the grasping side (the line x = L, z = height of the finger frame, across the
-  width); the cable pulled with tension T; the stop's reaction.
+  distal edge on the grasping side (the line x = L, z = height, across the width); the cable
+  pulled with tension T; the stop's reaction.
 
-  - Continuum (:func:`blocked_tip_force_continuum`): the linear scikit-fem model of
-    ``linear_compliance`` (same mesh, knot load and clamp) with the displacement normal to the
-    stop (finger z) of the distal edge's nodes held at zero, a Dirichlet condition; the
-    reaction is ``K u - f`` at those dofs, summed, times 2 for the symmetric half mesh. The
-    finger straight, every via point of the cable is on one line, so the cable's only load is
-    the knot's ``-T`` along x, as in ``linear_compliance``.
-  - Chain (:func:`blocked_tip_force_chain`): a world-fixed box on the grasping side whose face
-    touches the tip element's grasping face over its distal part (frictionless: ``condim`` 1 at
-    a higher priority), the servo switched off (MuJoCo's actuation disabled) and the reel's
-    slide joint pulled with a constant generalised force T, which the cable's tendon limit
-    carries to the finger as tension T (the tension sensor reads T at rest); run to rest, the
-    stop's contact normal forces summed (``mj_contactForce``).
+  - Continuum, linear (:func:`blocked_tip_linear`, :func:`blocked_tip_force_continuum`): the
+    scikit-fem model of ``linear_compliance`` (same mesh, knot load and clamp) with the
+    displacement normal to the stop (z) of the distal edge's nodes held at zero, a Dirichlet
+    condition; the reaction is ``K u - f`` at those dofs, summed, times 2 for the symmetric half
+    mesh. With the finger straight every via point of the cable lies on one line, so the
+    cable's only load is the knot's ``-T`` along x, as in ``linear_compliance``. The blocked
+    finger does not stay straight: it takes an S shape (the proximal hinges open, the distal
+    ones close), so the model holds only while its hinges turn a few degrees
+    (``small_rotation_tension``, about 0.025 N on the default design) and its cuts stay open
+    (``cut_closing_tension``, about 0.19 N): the tensions of the grasp's set-point (0.5-5 N)
+    are far outside it, and :func:`blocked_tip_force_continuum` refuses them.
+  - Continuum, nonlinear (:func:`continuum_contact` against :func:`tip_stop`): the MuJoCo flex
+    reference with the stop as a plane in its scene, relaxed to rest; its large rotations and
+    the contact are MuJoCo's. Minutes per tension.
+  - Chain (:func:`blocked_tip_force_chain`, :func:`chain_contact`): the stop is a plane that
+    collides with the tip element only (an explicit contact pair; see :func:`tip_stop` for why
+    not a box), frictionless (``condim`` 1). The servo is switched off (MuJoCo's actuation
+    disabled) and the reel's slide joint pulled with a constant generalised force T, which the
+    cable's tendon limit carries to the finger as tension T (its sensor reads T at rest); run
+    to rest, the stop's contact normal forces summed (``mj_contactForce``).
 
-* **Cylinder.** The finger closes on a rigid world-fixed cylinder (axis along the hinge axes)
-  that touches the two edges of the middle cut's opening on the grasping face (the cut between
-  B3 and B4 at x = L/2): :func:`cylinder_contact_chain` and, on the MuJoCo flex reference with
-  the cylinder in its scene, :func:`cylinder_contact_continuum`.
+* **Cylinder.** The finger closes on a rigid world-fixed frictionless cylinder (axis along the
+  hinge axes) resting on the two edges of the middle cut's opening on the grasping face (the
+  cut between B3 and B4, x = L/2): :func:`cylinder_contact_chain` and, on the MuJoCo flex
+  reference with the cylinder in its scene, :func:`cylinder_contact_continuum` (2 minutes per
+  case). The flex has no contact between cut faces, so the comparison needs tensions that
+  keep the cuts open; at the set-point the chain's cuts are closed (its stops hold them).
 
 Where each holds, and the measured numbers: ``docs/calibration.md``, "The finger in contact".
 
@@ -45,13 +56,13 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from gripper.core.params import GripperParams
+from gripper.core.params import FingerGeometry, GripperParams
 from gripper.core.resources import DEFAULT_CALIBRATION_DIR
 from gripper.model.builders import build_bending_spec
 from gripper.model.names import FingerNames
 from gripper.references.continuum import ReferenceConfig, ReferenceFinger, kabsch_angles
 from gripper.references.convergence import MEASURE_SCALE, solve_clamped
-from gripper.references.finger_mesh import MeshResolution, finger_mesh
+from gripper.references.finger_mesh import FingerMesh, MeshResolution, finger_mesh
 from gripper.sim.stability import SimulationUnstable, check_stable
 
 CLAMP_LENGTH = 0.008  # m, the reference's clamp (ReferenceConfig.clamp_length)
@@ -140,20 +151,17 @@ def blocked_tip_linear(params: GripperParams | None = None, mesh: MeshResolution
         clamp.append(nd[1, fm.plane_nodes])
     edge = np.flatnonzero(np.isclose(pts[:, 0], g.length) & np.isclose(pts[:, 2], g.height))
     edge = edge[np.argsort(pts[edge, 1])]
-    hinges = []
-    u_blocked = None
-    for blocked in (False, True):
-        fixed = np.unique(np.concatenate(clamp + ([nd[2, edge]] if blocked else [])))
-        u = solve_clamped(K, f, fixed, basis.doflocs)
-        # Read the rotations of the linear field scaled to microradians (linear_compliance).
+
+    def hinge_angles(u: np.ndarray) -> np.ndarray:  # read at microradians (linear_compliance)
         cur = pts + MEASURE_SCALE * u[nd].T
         angles, _ = kabsch_angles(fm, cur, list(fm.nodes_of_element), list(fm.element_volume_weights))
-        hinges.append(np.degrees(np.diff(angles)) / MEASURE_SCALE)
-        u_blocked = u
-    assert u_blocked is not None
+        return np.degrees(np.diff(angles)) / MEASURE_SCALE
+
+    free_hinges = hinge_angles(solve_clamped(K, f, np.unique(np.concatenate(clamp)), basis.doflocs))
+    u_blocked = solve_clamped(K, f, np.unique(np.concatenate(clamp + [nd[2, edge]])), basis.doflocs)
+    hinge_blocked = hinge_angles(u_blocked)
     reaction = (K @ u_blocked - f)[nd[2, edge]]  # on the finger, along z: the stop pushes back
     edge_force = -reaction / share
-    hinge_blocked = hinges[1]
     opening_rate = _cut_closing_rates(fm, g, u_blocked[nd].T)
     closing = opening_rate > 0
     gap = 2.0 * g.cut_half_width
@@ -162,13 +170,13 @@ def blocked_tip_linear(params: GripperParams | None = None, mesh: MeshResolution
         force_per_newton=float(edge_force.sum()),
         edge_reactions_per_newton=tuple(float(x) for x in edge_force),
         hinge_deg_per_newton=tuple(float(x) for x in hinge_blocked),
-        free_hinge_deg_per_newton=tuple(float(x) for x in hinges[0]),
+        free_hinge_deg_per_newton=tuple(float(x) for x in free_hinges),
         cut_closing_tension=cut_closing,
         small_rotation_tension=float(SMALL_ROTATION_DEG / np.abs(hinge_blocked).max()),
         modulus_factor=factor, nodes=fm.n_nodes, wall_time_s=time.perf_counter() - t0)
 
 
-def _cut_closing_rates(fm, g, disp: np.ndarray) -> np.ndarray:
+def _cut_closing_rates(fm: FingerMesh, g: FingerGeometry, disp: np.ndarray) -> np.ndarray:
     """Per cut, how fast its opening at the grasping face closes [m per newton]: the x
     displacement of the distal element's proximal top corner less the proximal element's
     distal top corner, each averaged over the width (positive closes the cut)."""
@@ -446,9 +454,10 @@ class _ContactSums:
 
 def blocked_tip_force_chain(params: GripperParams | None, tensions) -> np.ndarray:
     """The stop's reaction on the hinge chain's blocked tip at rest [N], one per tension [N]
-    (:func:`chain_contact` against :func:`tip_stop`). 0 where the tip slipped off the stop:
-    past about 0.07 N on the default design the chain has no blocked equilibrium
-    (``docs/calibration.md``, "The finger in contact")."""
+    (:func:`chain_contact` against :func:`tip_stop`, about a second each). Past about 0.04 N
+    on the default design the chain's proximal hinges reach their extension stops and the tip
+    slides along the stop as the finger curls (``docs/calibration.md``, "The finger in
+    contact")."""
     stop = tip_stop(params)
     return np.array([chain_contact(params, float(t), stop).normal_force for t in tensions])
 
@@ -464,6 +473,9 @@ def cylinder_contact_chain(params: GripperParams | None, diameter: float, tensio
 FLEX_RADIUS = 0.0002  # m: the reference flex's collision radius (continuum._flexcomp_xml's)
 FLEX_RAMP_TIME = 0.5  # s: the tension's ramp from 0 (5 ms steps, first mode critically damped)
 FLEX_MAX_TIME = 10.0  # s of simulated time
+# deg: at rest when the bending moves less than this over half a second: a quarter of the
+# calibration's REST_TOL_DEG, as the contact forces here are read at a few hundredths of a newton
+FLEX_REST_TOL_DEG = 0.005
 # The flex's contact: stiffness and damping given directly (MuJoCo's negative solref, per unit
 # of the contact's effective mass). The time-constant form at two 5 ms steps let the light
 # edge nodes sink 46 µm into the stop at 0.005 N (0.6 % of the blocked force); this one, 1 µm.
@@ -536,7 +548,7 @@ def continuum_contact(params: GripperParams | None, tension: float, obstacle: Ob
     its scene and the cable at ``tension`` [N], relaxed to rest: the relaxation of
     ``gripper.references.continuum_checks`` (5 ms implicit steps, first mode critically
     damped), the tension ramped over ``FLEX_RAMP_TIME``, at rest when the bending moves less
-    than ``rest_tol_deg`` over half a second (default ``REST_TOL_DEG``, 0.02°; at most
+    than ``rest_tol_deg`` over half a second (default ``FLEX_REST_TOL_DEG``; at most
     ``FLEX_MAX_TIME``). The contact forces of the half mesh are doubled. ``modulus_factor``:
     default :func:`committed_modulus_factor`.
 
@@ -544,7 +556,7 @@ def continuum_contact(params: GripperParams | None, tension: float, obstacle: Ob
         ValueError: a cut closed (the body has no contact between cut faces).
         SimulationUnstable: MuJoCo warned or the state became non-finite.
     """
-    from gripper.references.continuum_checks import REST_TOL_DEG, relax_to_rest, relaxation_config
+    from gripper.references.continuum_checks import relax_to_rest, relaxation_config
 
     t0 = time.perf_counter()
     factor = committed_modulus_factor() if modulus_factor is None else float(modulus_factor)
@@ -553,7 +565,7 @@ def continuum_contact(params: GripperParams | None, tension: float, obstacle: Ob
     g = ref.p.finger
     at_rest = True
     try:
-        tol = REST_TOL_DEG if rest_tol_deg is None else rest_tol_deg
+        tol = FLEX_REST_TOL_DEG if rest_tol_deg is None else rest_tol_deg
         angles, _, _ = relax_to_rest(ref, tension, ramp_time=FLEX_RAMP_TIME, rest_tol_deg=tol,
                                      max_time=FLEX_MAX_TIME, what="contact check (continuum)")
     except SimulationUnstable as err:
@@ -581,7 +593,7 @@ def continuum_contact(params: GripperParams | None, tension: float, obstacle: Ob
         element = next((e + 1 for e, mem in enumerate(members) if nodes and nodes <= mem), 0)
         f6 = np.zeros(6)
         mujoco.mj_contactForce(m, d, i, f6)
-        normal = c.frame[:3] * (1.0 if side == 1 else -1.0)  # onto the obstacle
+        normal = c.frame[:3] * (-1.0 if side == 1 else 1.0)  # onto the obstacle (frame: geom 1 to 2)
         contacts.append((c.pos.copy(), element, f6[0], f6[0] * normal, -c.dist))
     sums = _ContactSums()
     sums.add(contacts, 2.0 if ref.mesh.symmetric else 1.0)

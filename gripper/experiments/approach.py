@@ -75,7 +75,8 @@ def choose_grasp(est: ObjectEstimate, p: GripperParams, proto) -> str:
     """The rule of the module docstring; ``proto.grasp`` other than ``auto`` forces one."""
     if proto.grasp != "auto":
         return proto.grasp
-    clears_top = est.height + proto.palm_clearance <= p.finger_length + proto.fingertip_clearance
+    tip = proto.fingertip_clearance_for(p.pneumatic_fingers)
+    clears_top = est.height + proto.palm_clearance <= p.finger_length + tip
     fits = est.radius < p.layout.palm_radius
     return "fingertip" if clears_top and fits else "envelope"
 
@@ -87,7 +88,7 @@ def plan_approach(est: ObjectEstimate, p: GripperParams, proto) -> ApproachPlan:
     x, y = (est.x, est.y) if proto.centre else (0.0, 0.0)
     x, y = float(np.clip(x, -travel, travel)), float(np.clip(y, -travel, travel))
     if grasp == "fingertip":
-        z = est.support_z + p.finger_length + proto.fingertip_clearance
+        z = est.support_z + p.finger_length + proto.fingertip_clearance_for(p.pneumatic_fingers)
     else:
         z = est.support_z + max(p.finger_length + proto.tip_clearance, est.height + proto.palm_clearance)
     return ApproachPlan(grasp=grasp, x=x, y=y, palm_z=float(z), support_z=est.support_z,
@@ -154,5 +155,5 @@ def fingertip_palm_z(plan: ApproachPlan, p: GripperParams, proto, spool: np.ndar
     pneumatic gripper; the deepest-reaching finger counts), never below ``plan.floor_z``."""
     angles, low, _ = finger_reach(p)
     reach = np.interp(spool, angles, low)
-    return np.maximum(plan.support_z + proto.fingertip_clearance + reach, plan.floor_z)
+    return np.maximum(plan.support_z + proto.fingertip_clearance_for(p.pneumatic_fingers) + reach, plan.floor_z)
 

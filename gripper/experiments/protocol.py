@@ -69,6 +69,11 @@ class GraspProtocol(Validated):
     fingertip_clearance: float = param(0.0, "m", ge=0, le=0.05,
                                        source="fingertip grasp: the fingers' lowest point above the sensed support; "
                                        "0, the tips run on it (2 mm lost 5 of 16 zipper bags, docs/controller.md)")
+    pneumatic_fingertip_clearance: float = param(
+        0.003, "m", ge=0, le=0.05,
+        source="the pneumatic gripper's fingertip grasp (fingertip_clearance is the cable gripper's): at 0 its "
+        "stiff 19 mm tips, pressed to the table by the chamber, pinched the zipper bag's film against it (seed 21: "
+        "8 of 10 films past yield, 0 at 3 mm; docs/contact.md)")
     close_speed: float = param(0.04, "m/s", ge=1e-3, le=1, source="cable contraction speed (spool surface)")
     policy: str = param("controller", "-", choices=POLICIES,
                         source="controller: the object-agnostic grip (gripper.experiments.controller); "
@@ -104,6 +109,11 @@ class GraspProtocol(Validated):
 
     def to_dict(self) -> dict[str, Any]:
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+    def fingertip_clearance_for(self, pneumatic: bool) -> float:
+        """The fingertip grasp's clearance above the support for the cable or the pneumatic
+        gripper [m]."""
+        return self.pneumatic_fingertip_clearance if pneumatic else self.fingertip_clearance
 
 
 @dataclass(frozen=True)

@@ -203,7 +203,8 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
         estimate = eye.look(m, d, probe.palm)  # raises NoObjectSeen
         plan = plan_approach(estimate, p, proto)
     elif proto.grasp == "fingertip":  # the catalogue's size, the fingertip grasp (for ablations)
-        plan = ApproachPlan(grasp="fingertip", x=0.0, y=0.0, palm_z=p.finger.length + proto.fingertip_clearance,
+        plan = ApproachPlan(grasp="fingertip", x=0.0, y=0.0,
+                            palm_z=p.finger.length + proto.fingertip_clearance_for(p.pneumatic_fingers),
                             support_z=0.0, floor_z=obj.height + proto.palm_clearance)
     else:
         plan = ApproachPlan(grasp="envelope", x=0.0, y=0.0, palm_z=grasp_height(p, obj, proto), support_z=0.0)
