@@ -192,7 +192,7 @@ FLAGS = {
     "envelope": ["--out", "--sizes", "--masses", "--frictions", "--shapes", "--trials", "--seed", "--grip-tension"],
     "check": ["--duration", "--seed", "--params"],
     "crush": ["--objects", "--depth", "--speed", "--hold"],
-    "pullout": ["--objects", "--rate", "--max-force", "--grip-tension", "--policy"],
+    "pullout": ["--objects", "--rate", "--max-force", "--grip-tension", "--grip-pressure", "--policy"],
 }
 arg_values = st.one_of(st.sampled_from(["block", "balloon,block", "block,block", "mesh:nowhere.stl", "mesh:x::abc",
                                         "nope", "0", "-1", "2", "1e9", "1e400", "nan", "inf", "", "paper", "fmbs",

@@ -50,7 +50,7 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     u = d.ctrl.copy()
     dt = m.opt.timestep
     out = {"object": obj.name, "slip_m": slip, "rate_N_per_s": rate, "policy": proto.policy,
-           "grip_tension_N": grasp.get("grip_tension_N")}
+           "grip_tension_N": grasp.get("grip_tension_N"), "grip_pressure_Pa": grasp.get("grip_pressure_Pa")}
     force = 0.0
     while force < max_force:
         force = min(max_force, force + rate * dt)

@@ -133,7 +133,8 @@ def success_plot(summary: dict, out: str | Path) -> None:
 
 
 def holding_force_plot(results: list[dict], out: str | Path) -> None:
-    """Holding force against the controller's grip set-point, one line per object (from
+    """Holding force against the controller's grip set-point (cable tension, or chamber pressure for
+    the pneumatic gripper), one line per object (from
     :func:`gripper.experiments.pullout.run_pullout` results); PNG. Points held at the pull's
     upper bound are drawn hollow (the holding force is at least that)."""
     import matplotlib
@@ -144,17 +145,19 @@ def holding_force_plot(results: list[dict], out: str | Path) -> None:
     out = check_png_path(out, "--plot")
     fig, ax = plt.subplots(figsize=(5.5, 3.8))
     names = list(dict.fromkeys(r["object"] for r in results))
+    pneumatic = any(r.get("grip_pressure_Pa") is not None for r in results)
+    key, scale = ("grip_pressure_Pa", 1e-3) if pneumatic else ("grip_tension_N", 1.0)
     for k, name in enumerate(names):
-        rs = sorted((r for r in results if r["object"] == name and r["grip_tension_N"] is not None),
-                    key=lambda r: r["grip_tension_N"])
+        rs = sorted((r for r in results if r["object"] == name and r.get(key) is not None), key=lambda r: r[key])
         if not rs:
             continue
-        x = [r["grip_tension_N"] for r in rs]
+        x = [r[key] * scale for r in rs]
         y = [r["holding_force_N"] for r in rs]
         ax.plot(x, y, "-", color=f"C{k}", label=name)
         for xi, yi, r in zip(x, y, rs, strict=True):
             ax.plot(xi, yi, "o", color=f"C{k}", mfc="none" if r["held_at_max"] else f"C{k}")
-    ax.set_xlabel("grip set-point: cable tension per finger [N]")
+    ax.set_xlabel("grip set-point: chamber pressure [kPa]" if pneumatic
+                  else "grip set-point: cable tension per finger [N]")
     ax.set_ylabel("holding force (pull to 5 mm slip) [N]")
     ax.set_title("Pull-out under the grasp controller")
     ax.set_ylim(bottom=0)

@@ -24,12 +24,17 @@ def add(sub) -> None:
     po = with_params(sub.add_parser(
         "pullout", help="holding force: pull the held object until it slips 5 mm",
         description="Grasp and lift as in a trial, then pull the object straight down at --rate until it "
-                    "slips 5 mm; with the controller, once per --grip-tension set-point."))
+                    "slips 5 mm; with the controller, once per --grip-tension (cable) or --grip-pressure "
+                    "(pneumatic) set-point."))
     po.add_argument("--objects", default="block,cylinder", help="comma-separated names")
     po.add_argument("--policy", choices=POLICIES, default=GraspProtocol().policy,
                     help="controller (default) or per_object closing")
-    po.add_argument("--grip-tension", default=str(GraspProtocol().grip_tension), metavar="N[,N...]",
-                    help="controller set-points [N], comma-separated (default %(default)s)")
+    po.add_argument("--grip-tension", default=None, metavar="N[,N...]",
+                    help=f"the cable gripper's controller set-points [N], comma-separated (default "
+                         f"{GraspProtocol().grip_tension:g})")
+    po.add_argument("--grip-pressure", default=None, metavar="PA[,PA...]",
+                    help=f"the pneumatic gripper's set-points [Pa], comma-separated (default "
+                         f"{GraspProtocol().grip_pressure:g}; at most its regulator's range)")
     po.add_argument("--plot", metavar="FILE.png", help="also write holding force against set-point")
     number(po, "--rate", float, lo=0, lo_open=True, hi=1000, default=PULL_RATE, help="pull ramp [N/s]")
     number(po, "--max-force", float, lo=0, lo_open=True, hi=1000, default=PULL_MAX, help="largest pull [N]")
@@ -37,25 +42,44 @@ def add(sub) -> None:
 
 
 def run(args) -> int:
+    from gripper.experiments.controller import check_set_point
     from gripper.experiments.protocol import GraspProtocol
     from gripper.experiments.pullout import run_pullout
 
     objects = object_specs(args.objects)
     policy = args.policy
     base = GraspProtocol(policy=policy)
-    grips = numbers(args.grip_tension, "--grip-tension", lo=0, lo_open=True) if policy == "controller" else (
-        base.grip_tension,)
-    protos = [base.replace(grip_tension=g) for g in grips]
+    params = design(args)
+    pneumatic = params.pneumatic_fingers
+    if pneumatic and args.grip_tension is not None:
+        raise ValueError("--grip-tension: the cable gripper's set-point; the pneumatic gripper takes --grip-pressure")
+    if not pneumatic and args.grip_pressure is not None:
+        raise ValueError("--grip-pressure: the pneumatic gripper's set-point; the cable gripper takes --grip-tension")
+    if pneumatic:
+        grips = numbers(args.grip_pressure or str(base.grip_pressure), "--grip-pressure", lo=0, lo_open=True)
+        protos = [base.replace(grip_pressure=g) for g in grips]
+    elif policy == "controller":
+        grips = numbers(args.grip_tension or str(base.grip_tension), "--grip-tension", lo=0, lo_open=True)
+        protos = [base.replace(grip_tension=g) for g in grips]
+    else:
+        if args.grip_tension is not None:
+            raise ValueError("--grip-tension: a controller set-point; --policy per_object closes by each "
+                             "object's own command")
+        protos = [base]
+    for proto in protos:
+        check_set_point(proto.validate(), params)
     if args.plot:
         check_output_file(args.plot, "--plot", (".png",))
-    params = design(args, cable_only="gripper pullout")
     results = []
     for name in objects:
         for proto in protos:
             res = run_pullout(name, params=params, protocol=proto, rate=args.rate, max_force=args.max_force)
             results.append(res)
             bound = ">=" if res["held_at_max"] else ""
-            grip = f"grip {res['grip_tension_N']:g} N: " if res["grip_tension_N"] is not None else "per_object: "
+            if pneumatic:
+                grip = f"grip {res['grip_pressure_Pa'] / 1e3:g} kPa: "
+            else:
+                grip = f"grip {res['grip_tension_N']:g} N: " if res["grip_tension_N"] is not None else "per_object: "
             print(f"{name:<10} {grip}holding force {bound}{res['holding_force_N']:.2f} N "
                   f"(pull ramp {res['rate_N_per_s']:g} N/s until {res['slip_m'] * 1e3:g} mm slip)")
     if args.plot:
