@@ -207,3 +207,12 @@ def test_grasp_squeeze_converges_in_the_step(obj):
             for dt in (0.001, 0.002)]
     assert all(r["status"] == "ok" and r["success"] for r in recs)
     assert recs[0]["peak_total_force_N"] == pytest.approx(recs[1]["peak_total_force_N"], rel=0.05)
+
+
+def test_pullout_of_a_grasp_that_did_not_lift_holds_nothing():
+    """A pull down on a part still on the table loads the table: the holding force is 0, not the
+    pull's bound (the pneumatic gripper at 100 kPa does not lift the block)."""
+    p = GripperParams()
+    p = p.replace(actuation=p.actuation.replace(kind="pneumatic"))
+    res = run_pullout("block", params=p, protocol=GraspProtocol(grip_pressure=100e3))
+    assert res["lifted"] is False and res["holding_force_N"] == 0.0 and not res["held_at_max"]

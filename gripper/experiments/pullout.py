@@ -26,7 +26,8 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     The pull is a body force on every body of the object in proportion to its mass (as a
     hanging weight would load it), ramped at ``rate`` until the object has moved ``slip``
     relative to the palm; the force at that moment is the holding force. If ``max_force`` is
-    reached first, the result is that bound with ``held_at_max = True``. Under the grasp
+    reached first, the result is that bound with ``held_at_max = True``. A grasp that did not lift
+    the object to ``protocol.success_height`` holds nothing: 0 N, ``lifted = False``. Under the grasp
     controller the servos keep the goals and the current limit they had at the end of the hold
     (the pull loads the cables more, so no regrip is due).
     """
@@ -44,13 +45,18 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     rec = PeakRecorder(probe)
     short = proto.replace(hold_s=0.3, shake_s=0.0)
     grasp = run_protocol(m, d, p, obj, short, probe, rec)
+    out = {"object": obj.name, "slip_m": slip, "rate_N_per_s": rate, "policy": proto.policy,
+           "grip_tension_N": grasp.get("grip_tension_N"), "grip_pressure_Pa": grasp.get("grip_pressure_Pa")}
+    if grasp["lift_height_m"] < short.success_height:
+        # not lifted: a pull down would load the table, not the grasp (until 0.17.0 the pull's
+        # upper bound there as held)
+        return {**out, "holding_force_N": 0.0, "held_at_max": False, "lifted": False}
+    out["lifted"] = True
     masses = m.body_mass[probe.object_bodies]
     share = masses / masses.sum()
     rel0 = probe.object_pos(d) - d.xpos[probe.palm]
     u = d.ctrl.copy()
     dt = m.opt.timestep
-    out = {"object": obj.name, "slip_m": slip, "rate_N_per_s": rate, "policy": proto.policy,
-           "grip_tension_N": grasp.get("grip_tension_N"), "grip_pressure_Pa": grasp.get("grip_pressure_Pa")}
     force = 0.0
     while force < max_force:
         force = min(max_force, force + rate * dt)

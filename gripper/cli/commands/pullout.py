@@ -76,12 +76,13 @@ def run(args) -> int:
             res = run_pullout(name, params=params, protocol=proto, rate=args.rate, max_force=args.max_force)
             results.append(res)
             bound = ">=" if res["held_at_max"] else ""
+            note = "" if res.get("lifted", True) else " (not lifted: holds nothing)"
             if pneumatic:
                 grip = f"grip {res['grip_pressure_Pa'] / 1e3:g} kPa: "
             else:
                 grip = f"grip {res['grip_tension_N']:g} N: " if res["grip_tension_N"] is not None else "per_object: "
             print(f"{name:<10} {grip}holding force {bound}{res['holding_force_N']:.2f} N "
-                  f"(pull ramp {res['rate_N_per_s']:g} N/s until {res['slip_m'] * 1e3:g} mm slip)")
+                  f"(pull ramp {res['rate_N_per_s']:g} N/s until {res['slip_m'] * 1e3:g} mm slip){note}")
     if args.plot:
         from gripper.render.figures import holding_force_plot
 
