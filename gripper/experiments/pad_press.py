@@ -12,7 +12,7 @@ penetration). Steps with the grasp scenes' discrete integrator.
 Example:
     >>> from gripper.core.params import GripperParams
     >>> press = press_pad(GripperParams(), [1.0], part_mass=0.05)
-    >>> 0.3e-3 < press.indentation[0] < 0.6e-3
+    >>> bool(0.3e-3 < press.indentation[0] < 0.6e-3)
     True
 """
 

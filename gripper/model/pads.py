@@ -143,8 +143,16 @@ def hull_vertices(points: np.ndarray) -> np.ndarray:
 
 
 def cable_pad_vertices(p: GripperParams, profile: np.ndarray) -> np.ndarray:
-    """A cable element's collision surface: its prism, every edge rounded to ``contact.edge_radius``."""
-    return hull_vertices(rounded_prism(profile, p.finger.width, p.contact.edge_radius))
+    """A cable element's collision surface: its prism, every edge rounded to ``contact.edge_radius``.
+
+    Raises:
+        ValueError: naming ``contact.edge_radius``, when the rounding does not fit the element.
+    """
+    try:
+        return hull_vertices(rounded_prism(profile, p.finger.width, p.contact.edge_radius))
+    except ValueError as err:
+        raise ValueError(f"contact.edge_radius: {p.contact.edge_radius!r} m does not fit this finger's "
+                         f"elements ({err})") from None
 
 
 def pneumatic_pad_vertices(p: GripperParams, section: np.ndarray, length: float) -> np.ndarray:
@@ -152,7 +160,11 @@ def pneumatic_pad_vertices(p: GripperParams, section: np.ndarray, length: float)
     (the section's corners and the end faces' rims) rounded to ``contact.pneumatic_edge_radius``
     (the round back is already round). The fingertip grasp runs the tip's end face along the
     table into the part, so its rim meets films first."""
-    return hull_vertices(rounded_sweep(section, length, p.contact.pneumatic_edge_radius, round_ends=True))
+    try:
+        return hull_vertices(rounded_sweep(section, length, p.contact.pneumatic_edge_radius, round_ends=True))
+    except ValueError as err:
+        raise ValueError(f"contact.pneumatic_edge_radius: {p.contact.pneumatic_edge_radius!r} m does not fit "
+                         f"this finger's segments ({err})") from None
 
 
 def _convex_volume(vertices: np.ndarray) -> float:
