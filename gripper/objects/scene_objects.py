@@ -71,7 +71,7 @@ def _yaw_quat(yaw: float) -> list[float]:
 
 # A rigid part's contact when the fingers carry compliant pads (gripper.model.pads): near-rigid,
 # so the pads' springs, in N/m, carry the indentation. A contact's static stiffness is
-# d / ((1 - d) A timeconst^2), A its inverse effective mass in the integrator's metric: with
+# 1 / ((1 - d) A timeconst^2), A its inverse effective mass in the integrator's metric: with
 # d = 0.999 and 4 ms (twice the trials' step, MuJoCo's stability floor) it is 2.7e5 N/m or more
 # for A up to 230 kg⁻¹ (a 1 g pad on a 10 g part), about 100 times the pads' few thousand N/m.
 # Fixed in seconds, not steps, so the contact is the same at every step size. The part's geom has
