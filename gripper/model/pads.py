@@ -12,7 +12,8 @@ radius R pressed into the silicone,
 
 as a piecewise-linear spring (the pad joint's own stiffness from zero, then one dead-band
 tendon spring per knot, MuJoCo's two-valued ``springlength``), knots at forces a factor
-:data:`KNOT_FORCE_RATIO` apart from :data:`KNOT_FORCE_MIN` to ``contact.fit_force_max``. The part's
+:data:`KNOT_FORCE_RATIO` apart from :data:`KNOT_FORCE_MIN` to ``contact.fit_force_max`` or to where
+the pad bottoms out, whichever is lower. The part's
 side of the contact is made near-rigid (``gripper.objects.scene_objects.RIGID_CONTACT_SOLREF``),
 so the pad springs carry the indentation. The pad bottoms out at the silicone's depth above the
 cable hole (cable) or the fabric (pneumatic): a joint limit. The element keeps its mass on a
