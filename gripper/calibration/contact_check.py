@@ -60,9 +60,9 @@ from gripper.core.params import FingerGeometry, GripperParams
 from gripper.core.resources import DEFAULT_CALIBRATION_DIR
 from gripper.model.builders import build_bending_spec
 from gripper.model.names import FingerNames
-from gripper.references.continuum import ReferenceConfig, ReferenceFinger, kabsch_angles
-from gripper.references.convergence import MEASURE_SCALE, solve_clamped
-from gripper.references.finger_mesh import FingerMesh, MeshResolution, finger_mesh
+from gripper.references.continuum import FLEX_RADIUS, ReferenceConfig, ReferenceFinger, kabsch_angles
+from gripper.references.convergence import MEASURE_SCALE, linear_finger, solve_clamped
+from gripper.references.finger_mesh import FingerMesh, MeshResolution
 from gripper.sim.stability import SimulationUnstable, check_stable
 
 CLAMP_LENGTH = 0.008  # m, the reference's clamp (ReferenceConfig.clamp_length)
@@ -128,27 +128,14 @@ def blocked_tip_linear(params: GripperParams | None = None, mesh: MeshResolution
         modulus_factor: factor on Young's modulus; default :func:`committed_modulus_factor`
             (the default design's; it scales the angles and limits, never the force).
     """
-    import skfem
-    from skfem.models.elasticity import lame_parameters, linear_elasticity
-
     t0 = time.perf_counter()
     p = (params or GripperParams()).validate()
     g = p.finger
     factor = committed_modulus_factor() if modulus_factor is None else float(modulus_factor)
-    fm = finger_mesh(g, mesh or MeshResolution())
-    pts = fm.points
-    skmesh = skfem.MeshTet(np.ascontiguousarray(pts.T), np.ascontiguousarray(fm.tets.T))
-    basis = skfem.Basis(skmesh, skfem.ElementVector(skfem.ElementTetP1()))
-    lam, mu = lame_parameters(p.material.youngs_modulus * factor, p.material.poisson_ratio)
-    K = skfem.asm(linear_elasticity(lam, mu), basis)
-    nd = basis.nodal_dofs
-    share = 0.5 if fm.symmetric else 1.0
-    f = np.zeros(basis.N)  # 1 N of tension: the knot's -T along x, spread as the reference does
-    w = fm.node_weight[fm.anchor_nodes]
-    f[nd[0, fm.anchor_nodes]] = -share * w / w.sum()
-    clamp = [nd[:, pts[:, 0] <= clamp_length + 1e-9].ravel()]
-    if fm.symmetric:
-        clamp.append(nd[1, fm.plane_nodes])
+    lf = linear_finger(p, mesh or MeshResolution(), clamp_length=clamp_length,
+                       youngs_modulus=p.material.youngs_modulus * factor)
+    fm, basis, K, f, share = lf.mesh, lf.basis, lf.K, lf.load_per_newton, lf.share  # 1 N of tension
+    pts, nd = fm.points, basis.nodal_dofs
     edge = np.flatnonzero(np.isclose(pts[:, 0], g.length) & np.isclose(pts[:, 2], g.height))
     edge = edge[np.argsort(pts[edge, 1])]
 
@@ -157,8 +144,8 @@ def blocked_tip_linear(params: GripperParams | None = None, mesh: MeshResolution
         angles, _ = kabsch_angles(fm, cur, list(fm.nodes_of_element), list(fm.element_volume_weights))
         return np.degrees(np.diff(angles)) / MEASURE_SCALE
 
-    free_hinges = hinge_angles(solve_clamped(K, f, np.unique(np.concatenate(clamp)), basis.doflocs))
-    u_blocked = solve_clamped(K, f, np.unique(np.concatenate(clamp + [nd[2, edge]])), basis.doflocs)
+    free_hinges = hinge_angles(solve_clamped(K, f, lf.fixed, basis.doflocs))
+    u_blocked = solve_clamped(K, f, np.union1d(lf.fixed, nd[2, edge]), basis.doflocs)
     hinge_blocked = hinge_angles(u_blocked)
     reaction = (K @ u_blocked - f)[nd[2, edge]]  # on the finger, along z: the stop pushes back
     edge_force = -reaction / share
@@ -470,7 +457,6 @@ def cylinder_contact_chain(params: GripperParams | None, diameter: float, tensio
 
 # -- the continuum body (MuJoCo flex) ----------------------------------------------------------
 
-FLEX_RADIUS = 0.0002  # m: the reference flex's collision radius (continuum._flexcomp_xml's)
 FLEX_RAMP_TIME = 0.5  # s: the tension's ramp from 0 (5 ms steps, first mode critically damped)
 FLEX_MAX_TIME = 10.0  # s of simulated time
 # deg: at rest when the bending moves less than this over half a second: a quarter of the
@@ -482,41 +468,18 @@ FLEX_REST_TOL_DEG = 0.005
 FLEX_CONTACT_SOLREF = (-1.0e6, -2.0e3)
 
 
-def _flex_contact_xml(ref, obstacle: Obstacle) -> str:
-    """The continuum reference's flexcomp (as :mod:`gripper.references.continuum` writes it)
-    with contact switched on against ``obstacle``, a world geom, frictionless and stiff. The
-    obstacle is moved off the body by the flex's collision radius, which inflates its surface."""
-    p, mesh, cfg = ref.p, ref.mesh, ref.cfg
+def _obstacle_xml(p: GripperParams, obstacle: Obstacle) -> str:
+    """``obstacle`` as a world geom, frictionless and stiff, moved off the body by the flex's
+    collision radius, which inflates its surface."""
     cx, cz = obstacle.centre_xz
     solref = " ".join(f"{v:g}" for v in FLEX_CONTACT_SOLREF)
     solimp = " ".join(f"{v:g}" for v in CONTACT_SOLIMP)
     contact = f'condim="1" priority="1" friction="0 0 0" solref="{solref}" solimp="{solimp}"'
     if obstacle.kind == "plane":
-        geom = (f'<geom name="obstacle" type="plane" size="0.05 0.05 0.01" pos="{cx:.9g} 0 '
+        return (f'<geom name="obstacle" type="plane" size="0.05 0.05 0.01" pos="{cx:.9g} 0 '
                 f'{cz + FLEX_RADIUS:.9g}" zaxis="0 0 -1" {contact}/>')
-    else:
-        geom = (f'<geom name="obstacle" type="cylinder" size="{obstacle.radius:.9g} {p.finger.width:.9g}" '
-                f'pos="{cx:.9g} 0 {cz:.9g}" zaxis="0 1 0" {contact}/>')
-    mass = p.material.density * mesh.volume()
-    pts = " ".join(f"{v:.9g}" for v in mesh.points.ravel())
-    elem = " ".join(str(i) for i in mesh.tets.ravel())
-    pin = " ".join(str(i) for i in ref.pinned)
-    return f"""<mujoco model="finger_reference_contact">
-  <option timestep="{cfg.timestep}" integrator="discrete" solver="Newton"
-          iterations="{cfg.solver_iterations}" tolerance="{cfg.solver_tolerance:g}" gravity="0 0 0"/>
-  <worldbody>
-    {geom}
-    <body name="clamp">
-      <flexcomp name="body" type="direct" dim="3" point="{pts}" element="{elem}"
-                mass="{mass:.9g}" radius="{FLEX_RADIUS}">
-        <contact contype="1" conaffinity="1" selfcollide="none" condim="1"/>
-        <elasticity young="{p.material.youngs_modulus * cfg.modulus_factor:.9g}" poisson="{p.material.poisson_ratio}"
-                    damping="{cfg.mesh_mode_damping:.9g}"/>
-        <pin id="{pin}"/>
-      </flexcomp>
-    </body>
-  </worldbody>
-</mujoco>"""
+    return (f'<geom name="obstacle" type="cylinder" size="{obstacle.radius:.9g} {p.finger.width:.9g}" '
+            f'pos="{cx:.9g} 0 {cz:.9g}" zaxis="0 1 0" {contact}/>')
 
 
 class ContactReference(ReferenceFinger):
@@ -528,17 +491,9 @@ class ContactReference(ReferenceFinger):
         self.obstacle = obstacle
         super().__init__(params, config)
 
-    def _build(self) -> None:
-        self.model = mujoco.MjModel.from_xml_string(_flex_contact_xml(self, self.obstacle))
-        self.data = mujoco.MjData(self.model)
-        free = np.ones(self.mesh.n_nodes, dtype=bool)
-        free[self.pinned] = False
-        self.body_of_node = np.full(self.mesh.n_nodes, -1)
-        for i in np.flatnonzero(free):
-            self.body_of_node[i] = self.model.body(f"body_{i}").id
-        self.free = free
-        self._set_lumped_mass_and_damping()
-        self._hold_symmetry_plane()
+    def _scene_xml(self, *, world: str = "", contact: str = "") -> str:
+        return super()._scene_xml(world=world + "\n    " + _obstacle_xml(self.p, self.obstacle),
+                                  contact='contype="1" conaffinity="1" selfcollide="none" condim="1"')
 
 
 def continuum_contact(params: GripperParams | None, tension: float, obstacle: Obstacle, *,

@@ -189,21 +189,27 @@ class BendingRecord:
                 for k, v in self.__dict__.items()}
 
 
-def _flexcomp_xml(p: GripperParams, mesh: FingerMesh, pinned: np.ndarray,
-                  cfg: ReferenceConfig) -> str:
+FLEX_RADIUS = 0.0002  # m: the flex's collision radius (it collides only in gripper.calibration.contact_check)
+# Contact is off: the reference measures bending with open cuts (see tension_max).
+CONTACT_OFF = 'contype="0" conaffinity="0" selfcollide="none"'
+
+
+def _flexcomp_xml(p: GripperParams, mesh: FingerMesh, pinned: np.ndarray, cfg: ReferenceConfig, *,
+                  world: str = "", contact: str = CONTACT_OFF) -> str:
+    """The reference's scene; ``world``: more world elements (an obstacle), ``contact``: the
+    flex's contact attributes."""
     mass = p.material.density * mesh.volume()
     pts = " ".join(f"{v:.9g}" for v in mesh.points.ravel())
     elem = " ".join(str(i) for i in mesh.tets.ravel())
     pin = " ".join(str(i) for i in pinned)
-    # Contact is off: the reference measures bending with open cuts (see tension_max).
     return f"""<mujoco model="finger_reference">
   <option timestep="{cfg.timestep}" integrator="discrete" solver="Newton"
           iterations="{cfg.solver_iterations}" tolerance="{cfg.solver_tolerance:g}" gravity="0 0 0"/>
-  <worldbody>
+  <worldbody>{world}
     <body name="clamp">
       <flexcomp name="body" type="direct" dim="3" point="{pts}" element="{elem}"
-                mass="{mass:.9g}" radius="0.0002" rgba="0.93 0.93 0.88 1">
-        <contact contype="0" conaffinity="0" selfcollide="none"/>
+                mass="{mass:.9g}" radius="{FLEX_RADIUS}" rgba="0.93 0.93 0.88 1">
+        <contact {contact}/>
         <elasticity young="{p.material.youngs_modulus * cfg.modulus_factor:.9g}" poisson="{p.material.poisson_ratio}"
                     damping="{cfg.mesh_mode_damping:.9g}"/>
         <pin id="{pin}"/>
@@ -268,12 +274,16 @@ class ReferenceFinger:
         self.path_length0 = float(np.linalg.norm(np.diff(path0, axis=0), axis=1).sum())
         self.tip_point = np.array([g.length, 0.0, g.hinge_z])
 
+    def _scene_xml(self, *, world: str = "", contact: str = CONTACT_OFF) -> str:
+        """The MJCF of the reference's scene; a subclass adds ``world`` elements (an obstacle)
+        and sets the flex's ``contact`` attributes."""
+        return _flexcomp_xml(self.p, self.mesh, self.pinned, self.cfg, world=world, contact=contact)
+
     def _build(self) -> None:
         """Compile the model; set ``model``, ``data``, ``free`` (nodes with dofs of their own)
         and ``body_of_node`` (-1 for the others)."""
         pts = self.mesh.points
-        self.model = mujoco.MjModel.from_xml_string(
-            _flexcomp_xml(self.p, self.mesh, self.pinned, self.cfg))
+        self.model = mujoco.MjModel.from_xml_string(self._scene_xml())
         self.data = mujoco.MjData(self.model)
         free = np.ones(len(pts), dtype=bool)
         free[self.pinned] = False

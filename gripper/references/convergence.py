@@ -17,11 +17,12 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import asdict, dataclass, replace
+from typing import Any
 
 import numpy as np
 
 from gripper.core.params import GripperParams
-from gripper.references.finger_mesh import MeshResolution, finger_mesh
+from gripper.references.finger_mesh import FingerMesh, MeshResolution, finger_mesh
 
 CHECK_TENSION = 0.01  # N: the small check load (the solve is linear; results are per newton)
 DIRECT_SOLVE_MAX_DOFS = 60000  # reduced flexible multibody systems up to this size: sparse LU
@@ -67,6 +68,45 @@ def solve_clamped(K, f: np.ndarray, fixed: np.ndarray, doflocs: np.ndarray,
     return u
 
 
+@dataclass(frozen=True)
+class LinearFinger:
+    """The continuum finger's linear elastic model: the mesh, its scikit-fem vector basis,
+    stiffness ``K``, the cable's load at 1 N of tension (the knot's -T along x, spread over the
+    anchor nodes as the reference does; halved on a symmetric half mesh, ``share``) and the
+    clamped dofs (B1's clamped length, and the symmetry plane's normal dofs)."""
+
+    mesh: FingerMesh
+    basis: Any  # skfem.Basis (scikit-fem is imported where it is used)
+    K: Any  # scipy.sparse matrix
+    load_per_newton: np.ndarray
+    fixed: np.ndarray
+    share: float
+
+
+def linear_finger(p: GripperParams, res: MeshResolution, *, clamp_length: float,
+                  youngs_modulus: float | None = None, poisson_ratio: float | None = None) -> LinearFinger:
+    """Assemble :class:`LinearFinger` for ``p`` on mesh ``res`` (the material's E and nu unless
+    given)."""
+    import skfem
+    from skfem.models.elasticity import lame_parameters, linear_elasticity
+
+    fm = finger_mesh(p.finger, res)
+    skmesh = skfem.MeshTet(np.ascontiguousarray(fm.points.T), np.ascontiguousarray(fm.tets.T))
+    basis = skfem.Basis(skmesh, skfem.ElementVector(skfem.ElementTetP1()))
+    e = p.material.youngs_modulus if youngs_modulus is None else youngs_modulus
+    nu = p.material.poisson_ratio if poisson_ratio is None else poisson_ratio
+    K = skfem.asm(linear_elasticity(*lame_parameters(e, nu)), basis)
+    f = np.zeros(basis.N)
+    share = 0.5 if fm.symmetric else 1.0
+    w = fm.node_weight[fm.anchor_nodes]
+    f[basis.nodal_dofs[0, fm.anchor_nodes]] = -share * w / w.sum()
+    fixed_parts = [basis.nodal_dofs[:, fm.points[:, 0] <= clamp_length + 1e-9].ravel()]
+    if fm.symmetric:
+        fixed_parts.append(basis.nodal_dofs[1, fm.plane_nodes])
+    return LinearFinger(mesh=fm, basis=basis, K=K, load_per_newton=f,
+                        fixed=np.unique(np.concatenate(fixed_parts)), share=share)
+
+
 def linear_compliance(params: GripperParams | None = None, mesh: MeshResolution | None = None,
                       *, clamp_length: float = 0.008, poisson_ratio: float | None = None,
                       fmbs=None) -> dict:
@@ -86,30 +126,16 @@ def linear_compliance(params: GripperParams | None = None, mesh: MeshResolution 
         ``element_compliance_deg_per_N`` (each element's angle per newton), ``nodes``,
         ``tets`` and ``wall_time_s``.
     """
-    import skfem
-    from skfem.models.elasticity import lame_parameters, linear_elasticity
-
     from gripper.references.continuum import kabsch_angles
 
     p = (params or GripperParams()).validate()
-    g = p.finger
-    nu = p.material.poisson_ratio if poisson_ratio is None else poisson_ratio
     t0 = time.perf_counter()
     res = mesh or MeshResolution()
     if fmbs is not None:
         res = replace(res, split_bridges=True)
-    fm = finger_mesh(g, res)
-    skmesh = skfem.MeshTet(np.ascontiguousarray(fm.points.T), np.ascontiguousarray(fm.tets.T))
-    basis = skfem.Basis(skmesh, skfem.ElementVector(skfem.ElementTetP1()))
-    K = skfem.asm(linear_elasticity(*lame_parameters(p.material.youngs_modulus, nu)), basis)
-    f = np.zeros(basis.N)
-    share = 0.5 if fm.symmetric else 1.0
-    w = fm.node_weight[fm.anchor_nodes]
-    f[basis.nodal_dofs[0, fm.anchor_nodes]] = -CHECK_TENSION * share * w / w.sum()
-    fixed_parts = [basis.nodal_dofs[:, fm.points[:, 0] <= clamp_length + 1e-9].ravel()]
-    if fm.symmetric:
-        fixed_parts.append(basis.nodal_dofs[1, fm.plane_nodes])
-    fixed = np.unique(np.concatenate(fixed_parts))
+    lf = linear_finger(p, res, clamp_length=clamp_length, poisson_ratio=poisson_ratio)
+    fm, basis, K, fixed, share = lf.mesh, lf.basis, lf.K, lf.fixed, lf.share
+    f = CHECK_TENSION * lf.load_per_newton
     if fmbs is None:
         u = solve_clamped(K, f, fixed, basis.doflocs)
     else:

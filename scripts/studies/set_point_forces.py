@@ -35,22 +35,20 @@ def main() -> None:
     pneumatic = cable.replace(actuation=cable.actuation.replace(kind="pneumatic"))
     print("| gripper | set-point | blocked-tip force per finger | holding force, block | holding force, cylinder |")
     print("|---|---|---|---|---|")
-    tips = blocked_tip_force_chain(cable, TENSIONS)
-    results = []
-    for t, tip in zip(TENSIONS, tips, strict=True):
-        hold = [run_pullout(o, params=cable, protocol=GraspProtocol(grip_tension=t)) for o in OBJECTS]
-        results += hold
-        print(f"| cable | {t:g} N | {tip:.2f} N | {hold[0]['holding_force_N']:.2f} N "
-              f"| {hold[1]['holding_force_N']:.2f} N |", flush=True)
-    holding_force_plot(results, out / "holding_force.png")
-    tips = blocked_tip_force_pneumatic(pneumatic, PRESSURES)
-    results = []
-    for pr, tip in zip(PRESSURES, tips, strict=True):
-        hold = [run_pullout(o, params=pneumatic, protocol=GraspProtocol(grip_pressure=pr)) for o in OBJECTS]
-        results += hold
-        print(f"| pneumatic | {pr / 1e3:g} kPa | {tip:.2f} N | {hold[0]['holding_force_N']:.2f} N "
-              f"| {hold[1]['holding_force_N']:.2f} N |", flush=True)
-    holding_force_plot(results, out / "holding_force_pneumatic.png")
+    grippers = (
+        ("cable", cable, TENSIONS, blocked_tip_force_chain(cable, TENSIONS),
+         lambda t: GraspProtocol(grip_tension=t), lambda t: f"{t:g} N", "holding_force.png"),
+        ("pneumatic", pneumatic, PRESSURES, blocked_tip_force_pneumatic(pneumatic, PRESSURES),
+         lambda pr: GraspProtocol(grip_pressure=pr), lambda pr: f"{pr / 1e3:g} kPa", "holding_force_pneumatic.png"),
+    )
+    for name, params, set_points, tips, protocol, shown, plot in grippers:
+        results = []
+        for sp, tip in zip(set_points, tips, strict=True):
+            hold = [run_pullout(o, params=params, protocol=protocol(sp)) for o in OBJECTS]
+            results += hold
+            cells = " | ".join(f"{h['holding_force_N']:.2f} N" if h["lifted"] else "not lifted" for h in hold)
+            print(f"| {name} | {shown(sp)} | {tip:.2f} N | {cells} |", flush=True)
+        holding_force_plot(results, out / plot)
     print(f"wrote {out / 'holding_force.png'}, {out / 'holding_force_pneumatic.png'}")
 
 
