@@ -54,14 +54,14 @@ after_import("mujoco", _no_mujoco_log_file)  # when MuJoCo is first imported: no
 _EXPORTS = {
     "GripperParams": "gripper.core.params",
     "PneumaticFinger": "gripper.core.params",
-    "regulator_datasheet": "gripper.pneumatic.regulator",
-    "PressureSensing": "gripper.pneumatic.sensing",
+    "regulator_datasheet": "gripper.datasheets.regulator",
+    "PressureSensing": "gripper.drives.pneumatic.sensing",
     "calibrate_pneumatic": "gripper.calibration.pneumatic_fit",
     "fit_pneumatic": "gripper.calibration.pneumatic_fit",
     "run_actuator_reference": "gripper.references.actuator_bending",
     "build_gripper_spec": "gripper.model.builders",
     "build_scene_spec": "gripper.model.builders",
-    "build_bending_spec": "gripper.model.builders",
+    "build_bending_spec": "gripper.drives.cable.finger",
     "GraspObject": "gripper.objects.grasp_object",
     "Placement": "gripper.objects.scene_objects",
     "get_object": "gripper.objects.library",
@@ -83,7 +83,7 @@ _EXPORTS = {
     "Envelope": "gripper.studies.envelope",
     "load_envelope": "gripper.studies.envelope",
     "run_envelope": "gripper.studies.envelope",
-    "ServoSensing": "gripper.servo.sensing",
+    "ServoSensing": "gripper.drives.cable.sensing",
     "DepthCamera": "gripper.sim.depth",
     "estimate_object": "gripper.sim.depth",
     "Calibration": "gripper.calibration.calfile",
@@ -104,22 +104,23 @@ if TYPE_CHECKING:  # static checkers and IDEs see the real names
     from gripper.calibration.pipeline import calibrate
     from gripper.calibration.pneumatic_fit import calibrate_pneumatic, fit_pneumatic
     from gripper.core.params import GripperParams, PneumaticFinger
+    from gripper.datasheets.regulator import regulator_datasheet
+    from gripper.drives.cable.finger import build_bending_spec
+    from gripper.drives.cable.sensing import ServoSensing
+    from gripper.drives.pneumatic.sensing import PressureSensing
     from gripper.envs.grasp_env import SoftGripperGraspEnv
     from gripper.experiments.crush import crush_test
     from gripper.experiments.protocol import GraspProtocol, TrialNoise
     from gripper.experiments.pullout import run_pullout
     from gripper.experiments.trial import run_trial
-    from gripper.model.builders import build_bending_spec, build_gripper_spec, build_scene_spec
+    from gripper.model.builders import build_gripper_spec, build_scene_spec
     from gripper.objects.grasp_object import GraspObject
     from gripper.objects.library import get_object, mesh_object
     from gripper.objects.scene_objects import Placement
-    from gripper.pneumatic.regulator import regulator_datasheet
-    from gripper.pneumatic.sensing import PressureSensing
     from gripper.references.actuator_bending import run_actuator_reference
     from gripper.references.continuum import ReferenceConfig, run_reference
     from gripper.render.figures import bending_figure, success_plot
     from gripper.render.video import record_trial_video
-    from gripper.servo.sensing import ServoSensing
     from gripper.studies.envelope import Envelope, load_envelope, run_envelope
     from gripper.studies.study import run_study
     from gripper.studies.study_file import load_study

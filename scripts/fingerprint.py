@@ -1,8 +1,8 @@
 """Behaviour fingerprint: hashes of what the simulator computes, to show that a refactor
 changed nothing.
 
-Three artefacts, each through the public entry points only (``gym.make`` and the CLI), so the
-same script runs on any version:
+Three artefacts per gripper (cable and pneumatic), each through the public entry points only
+(``gym.make`` and the CLI), so the same script runs on any version from 0.16.0:
 
 - ``env``: SHA-256 of every observation, reward and termination flag of seeded random-action
   episodes of ``SoftGripperGrasp-v8`` (block, then cylinder);
@@ -48,11 +48,27 @@ blocked_force = { r = 0.15 }
 grasp = { objects = ["block"], trials = 1 }
 """
 
+PNEUMATIC_STUDY = """
+[study]
+name = "fingerprint_pneumatic"
+design = "one_at_a_time"
+seed = 0
 
-def env_hash(steps: int = 120) -> str:
+[fixed]
+"actuation.kind" = "pneumatic"
+
+[vary]
+"pneumatic.n_segments" = [6]
+
+[responses]
+grasp = { objects = ["block"], trials = 1 }
+"""
+
+
+def env_hash(actuation: str, steps: int = 120) -> str:
     h = hashlib.sha256()
     for obj in ("block", "cylinder"):
-        env = gym.make("gripper:SoftGripperGrasp-v8", objects=obj)
+        env = gym.make("gripper:SoftGripperGrasp-v8", objects=obj, actuation=actuation)
         env.action_space.seed(0)
         obs, _ = env.reset(seed=0)
         h.update(np.asarray(obs, np.float64).tobytes())
@@ -75,19 +91,19 @@ def gripper_cli(*args: str) -> None:
                    stdout=subprocess.DEVNULL, cwd=tempfile.gettempdir())
 
 
-def bench_hash(out: Path) -> str:
-    gripper_cli("bench", "--trials", "2", "--workers", "2", "--out", str(out / "bench"))
-    recs = [json.loads(line) for line in (out / "bench" / "trials.jsonl").read_text().splitlines()]
+def bench_hash(out: Path, actuation: str) -> str:
+    gripper_cli("bench", "--trials", "2", "--workers", "2", "--actuation", actuation, "--out", str(out))
+    recs = [json.loads(line) for line in (out / "trials.jsonl").read_text().splitlines()]
     recs = [{k: v for k, v in r.items() if k not in NOT_PHYSICS} for r in recs]
     recs.sort(key=lambda r: (r["object"], r["index"]))
     return hashlib.sha256(json.dumps(recs, sort_keys=True).encode()).hexdigest()
 
 
-def study_hash(out: Path) -> str:
-    toml = out / "study.toml"
-    toml.write_text(STUDY)
-    gripper_cli("study", str(toml), "--workers", "2", "--out", str(out / "study"))
-    with open(out / "study" / "results.csv", newline="") as f:
+def study_hash(out: Path, study: str) -> str:
+    toml = out.with_suffix(".toml")
+    toml.write_text(study)
+    gripper_cli("study", str(toml), "--workers", "2", "--out", str(out))
+    with open(out / "results.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     rows = [{k: v for k, v in r.items() if k not in NOT_PHYSICS} for r in rows]
     return hashlib.sha256(json.dumps(rows, sort_keys=True).encode()).hexdigest()
@@ -100,9 +116,13 @@ def main() -> None:
     args = ap.parse_args()
     args.out = args.out.resolve()
     args.out.mkdir(parents=True, exist_ok=False)
-    result = {"env": env_hash(), "bench": bench_hash(args.out), "study": study_hash(args.out)}
+    result = {}
+    for actuation, study in (("cable", STUDY), ("pneumatic", PNEUMATIC_STUDY)):
+        result[f"{actuation}.env"] = env_hash(actuation)
+        result[f"{actuation}.bench"] = bench_hash(args.out / f"bench_{actuation}", actuation)
+        result[f"{actuation}.study"] = study_hash(args.out / f"study_{actuation}", study)
     for k, v in result.items():
-        print(f"{k:6s} {v}")
+        print(f"{k:16s} {v}")
     if args.json:
         args.json.write_text(json.dumps(result, indent=1) + "\n")
 

@@ -78,10 +78,11 @@ def test_environment_id_follows_its_version_history():
 
 
 def test_the_committed_models_are_package_data():
-    from gripper.core.resources import DATA_DIR, DEFAULT_CALIBRATION_DIR, MODEL_DIR, STUDIES_DIR
+    from gripper.core.resources import DATA_DIR, DEFAULT_CALIBRATION_DIR, MODELS_DIR, STUDIES_DIR
 
     assert DATA_DIR.is_relative_to(PACKAGE)
-    for path in (MODEL_DIR / "soft_gripper.xml", DEFAULT_CALIBRATION_DIR / "calibration.json",
+    for path in (MODELS_DIR / "soft_gripper" / "soft_gripper.xml", MODELS_DIR / "pneumatic_gripper" / "scene.xml",
+                 DEFAULT_CALIBRATION_DIR / "calibration.json",
                  STUDIES_DIR / "one_at_a_time.toml", ROOT / "models" / "soft_gripper" / "scene.xml"):
         assert path.is_file(), path
     assert (PACKAGE / "models").resolve() == (ROOT / "models").resolve()  # one copy: the top-level one

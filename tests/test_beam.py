@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from gripper.model.beam import chain_tip_position, elastica_tip_force, elastica_tip_moment
+from gripper.parts.beam import chain_tip_position, elastica_tip_force, elastica_tip_moment
 
 L, EI = 0.1, 1.0e-3
 

@@ -5,14 +5,14 @@ import pytest
 
 from gripper.cli.main import main
 from gripper.core.params import GripperParams
-from gripper.experiments.bending import BendingConfig, run_bending_test
-from gripper.model.closure import (
+from gripper.drives.cable.closure import (
     realised_secant_stiffness,
     teeth_closure_stiffness,
     teeth_impedance,
     teeth_lock_angle,
     teeth_moment,
 )
+from gripper.experiments.bending import BendingConfig, run_bending_test
 
 
 def _closing_design(closure: str = "rigid"):
@@ -183,7 +183,7 @@ def test_closed_cuts_keep_their_design_under_the_trials_integrator(degrees, tol)
     curve is kept up to 2° short of the lock, 8.9° past closure on the default design)."""
     import mujoco
 
-    from gripper.model.closure import closed_cut_rest_overrun
+    from gripper.drives.cable.closure import closed_cut_rest_overrun
     from gripper.objects.library import get_object
     from gripper.objects.scene_objects import Placement
     from gripper.sim.scene import build_grasp_scene

@@ -21,8 +21,8 @@ from gripper.calibration.fit import FitConfig, bound_warnings, check_held_out, f
 from gripper.calibration.measured import MAX_BENDING_DEG, angle_columns, read_measured_csv
 from gripper.core.params import GripperParams
 from gripper.core.resources import CALIBRATION_EXAMPLES_DIR
+from gripper.datasheets.servo import servo_datasheet
 from gripper.references.continuum import CLOSED_CUT_MARGIN_DEG, ReferenceConfig
-from gripper.servo.datasheet import servo_datasheet
 
 P = GripperParams()
 N_SEG = P.finger.n_segments

@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 
 from gripper.core.params import GripperParams
-from gripper.experiments.controller import CONTACT_TENSION, CURRENT_LIMIT_FACTOR, REGRIP_FRACTION
+from gripper.drives.cable.controller import CONTACT_TENSION, CURRENT_LIMIT_FACTOR, REGRIP_FRACTION
+from gripper.drives.cable.sensing import ServoSensing, ServoSensor
 from gripper.experiments.protocol import GRIP_TENSION, GRIP_TENSION_RANGE, GraspProtocol
 from gripper.experiments.trial import run_trial
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement
-from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.scene import build_grasp_scene
 
 

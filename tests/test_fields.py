@@ -13,7 +13,7 @@ from gripper.core.fields import field_specs
 from gripper.core.params import _SECTIONS, GripperParams, parameter_help, parameter_rows
 from gripper.experiments.protocol import BendingConfig, GraspProtocol, TrialNoise
 from gripper.objects.scene_objects import Placement
-from gripper.sim.model_files import parameter_table
+from gripper.sim.model_files import parameter_table, shipped_grippers
 
 CLASSES = [(name, cls) for name, cls in _SECTIONS.items()] + [("protocol", GraspProtocol), ("noise", TrialNoise),
                                                            ("bend", BendingConfig), ("placement", Placement)]
@@ -63,10 +63,12 @@ def test_the_defaults_are_inside_their_declared_ranges():
 
 
 def test_table_and_help_are_read_from_the_metadata():
+    """Each shipped gripper's model README lists its drive's sections; together they list all."""
     rows = parameter_rows()
-    table, help_text = parameter_table(), parameter_help()
+    tables = "\n".join(parameter_table(p) for p in shipped_grippers().values())
+    help_text = parameter_help()
     for section, name, _value, spec in rows:
-        line = next(r for r in table.splitlines() if r.startswith(f"| {section} | {name} |"))
+        line = next(r for r in tables.splitlines() if r.startswith(f"| {section} | {name} |"))
         assert f"| {spec.unit} | {spec.allowed()} | {spec.source} |" in line
         assert f"{section}.{name} = " in help_text
     assert len(rows) == sum(len(field_specs(c)) for c in _SECTIONS.values())

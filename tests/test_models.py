@@ -2,33 +2,51 @@ import mujoco
 import pytest
 
 from gripper.core.params import DEG, GripperParams
-from gripper.core.resources import MODEL_DIR as REPO_MODELS
+from gripper.core.resources import MODELS_DIR
+from gripper.drives import drive_for
+from gripper.drives.cable.closure import teeth_lock_angle
 from gripper.experiments.smoke import random_control_rollout
 from gripper.model.builders import build_scene_spec
-from gripper.model.closure import teeth_lock_angle
-from gripper.model.pads import pad_spring
-from gripper.sim.model_files import generate_model_files, readme_with_table
+from gripper.parts.pads import pad_spring
+from gripper.sim.model_files import generate_model_files, model_dir, readme_with_table, shipped_grippers
+
+REPO_MODELS = MODELS_DIR / "soft_gripper"
+GRIPPERS = shipped_grippers()
 
 
-def test_committed_models_match_fresh_generation():
-    fresh = generate_model_files()
-    for name, text in fresh.items():
-        committed = (REPO_MODELS / name).read_text()
-        assert committed == text, f"{name} is stale: run scripts/write_models.sh"
-    readme = (REPO_MODELS / "README.md").read_text()
-    assert readme == readme_with_table(readme), "model README table is stale"
+def test_models_holds_every_gripper_the_trials_run():
+    assert sorted(GRIPPERS) == ["pneumatic_gripper", "soft_gripper"]
+    assert sorted(p.name for p in MODELS_DIR.iterdir() if p.is_dir()) == sorted(GRIPPERS)
 
 
-def test_the_committed_scene_is_the_model_the_trials_run():
-    """``python -m mujoco.viewer --mjcf models/soft_gripper/scene.xml`` shows the trials' model:
+@pytest.mark.parametrize("name", sorted(GRIPPERS))
+def test_committed_models_match_fresh_generation(name):
+    params = GRIPPERS[name]
+    folder = model_dir(params)
+    fresh = generate_model_files(params)
+    assert sorted(fresh) == sorted(["scene.xml", f"{name}.xml"])
+    for file, text in fresh.items():
+        committed = (folder / file).read_text()
+        assert committed == text, f"{name}/{file} is stale: run scripts/write_models.sh"
+    readme = (folder / "README.md").read_text()
+    assert readme == readme_with_table(readme, params), f"{name}'s README table is stale"
+    # Menagerie's layout: the README shows the model's picture; licence and changelog beside it
+    assert f"]({name}.png)" in readme and (folder / f"{name}.png").is_file()
+    for file in ("CHANGELOG.md", "LICENSE"):
+        assert (folder / file).is_file(), file
+
+
+@pytest.mark.parametrize("name", sorted(GRIPPERS))
+def test_the_committed_scene_is_the_model_the_trials_run(name):
+    """``python -m mujoco.viewer --mjcf models/<name>/scene.xml`` shows the trials' model:
     the committed scene and the trial scene (no object) compile to the same numbers, every
     physical and visual array of MjModel (names aside)."""
     import numpy as np
 
     from gripper.sim.scene import grasp_scene_spec, trial_params
 
-    committed = mujoco.MjModel.from_xml_path(str(REPO_MODELS / "scene.xml"))
-    trial = grasp_scene_spec(trial_params(GripperParams())).compile()
+    committed = mujoco.MjModel.from_xml_path(str(model_dir(GRIPPERS[name]) / "scene.xml"))
+    trial = grasp_scene_spec(trial_params(GRIPPERS[name])).compile()
     assert committed.opt.timestep == trial.opt.timestep == 0.002
     assert committed.opt.integrator == trial.opt.integrator == mujoco.mjtIntegrator.mjINT_DISCRETE
     compared = 0
@@ -61,15 +79,13 @@ def test_the_committed_files_use_classes_and_materials():
     for name in ("silicone", "palm", "cable"):
         assert f'<material name="{name}"' in text
     assert text.count("rgba=") == 2 + 3  # the collision and pad classes, the three materials
-    for name in ("README.md", "CHANGELOG.md", "LICENSE"):
-        assert (REPO_MODELS / name).is_file(), name
 
 
 def test_committed_scene_loads():
     m = mujoco.MjModel.from_xml_path(str(REPO_MODELS / "scene.xml"))
     # 4 cables (spatial), one stop tendon (fixed) per hinge (4 fingers x 5 hinges) and the pads'
     # knot springs (one fixed tendon per knot past the first, 24 pads)
-    knots = len(pad_spring(GripperParams()).knots)
+    knots = len(pad_spring(drive_for(GripperParams())).knots)
     assert m.nu == 7 and m.ntendon == 4 + 20 + 24 * (knots - 1)
     assert sum(m.tendon(i).name.endswith("_cable") for i in range(m.ntendon)) == 4
     names = [m.sensor(i).name for i in range(m.nsensor)]

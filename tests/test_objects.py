@@ -7,6 +7,7 @@ import trimesh
 
 from gripper.bench.benchmark import wilson_interval
 from gripper.core.params import GripperParams
+from gripper.drives import drive_for
 from gripper.objects.library import DEFAULT_OBJECTS, LIBRARY, get_object, mesh_object
 from gripper.objects.scene_objects import Placement
 
@@ -109,5 +110,5 @@ def test_the_zipper_bag_is_built_from_its_sources():
     bricks = [b for b in range(m.nbody) if m.body(b).name.startswith("object_contents_")]
     assert len(bricks) == 2 and all(m.body_jntnum[b] == 1 for b in bricks)
     assert sum(m.body_mass[b] for b in bricks) == pytest.approx(2 * obj.contents_mass)
-    probe = ObjectProbe(m, obj, 4)
+    probe = ObjectProbe(m, obj, 4, drive_for(GripperParams()))
     assert probe.object_geom[[m.body_geomadr[b] for b in bricks]].all() and probe.flex >= 0

@@ -10,10 +10,11 @@ from scipy.spatial import ConvexHull
 
 from gripper.core.params import GripperParams
 from gripper.core.rounding import ARC_POINTS, inset_polygon, rounded_prism, rounded_sweep
+from gripper.drives import drive_for
+from gripper.drives.cable.geometry import element_profile
+from gripper.drives.pneumatic.chamber import segment_section
 from gripper.experiments.pad_press import press_pad
-from gripper.model.geometry import element_profile
-from gripper.model.pads import KNOT_FORCE_RATIO, hertz_law, pad_depth, pad_spring
-from gripper.pneumatic.chamber import segment_section
+from gripper.parts.pads import KNOT_FORCE_RATIO, hertz_law, pad_spring
 
 FORCES = [0.1, 0.3, 1.0, 2.0, 5.0]  # N: the acceptance range, 0.1-5 N
 
@@ -26,12 +27,12 @@ def _params(kind: str) -> GripperParams:
 def test_hertz_law_from_the_datasheet_modulus():
     # E* = E / (1 - nu^2) with paper 000 Table 2's 0.44 MPa and 0.48: 0.572 MPa; a 5 mm sphere
     # under 2 N sinks 1.1 mm (docs/limitations.md's figure, by hand)
-    law = hertz_law(GripperParams())
+    law = hertz_law(drive_for(GripperParams()))
     assert law.effective_modulus == pytest.approx(0.44e6 / (1 - 0.48 ** 2), rel=1e-12)
     five_mm = type(law)(law.effective_modulus, 0.005)
     assert five_mm.indentation(2.0) == pytest.approx(1.1e-3, rel=0.02)
     # the pneumatic finger's: E = 6 C10 of paper 001's Yeoh fit, incompressible
-    pn = hertz_law(_params("pneumatic"))
+    pn = hertz_law(drive_for(_params("pneumatic")))
     assert pn.effective_modulus == pytest.approx(6 * 0.11596e6 / 0.75, rel=1e-12)
 
 
@@ -44,8 +45,9 @@ def test_piecewise_spring_follows_hertz(kind):
     bound = np.max((1.0 + (r ** 1.5 - 1.0) * (t - 1.0) / (r - 1.0)) / t ** 1.5)
     assert 1.04 < bound < 1.06
     p = _params(kind)
-    law, spring = hertz_law(p), pad_spring(p)
-    top = min(p.contact.fit_force_max, float(law.force(pad_depth(p))))  # where the pad bottoms out
+    drive = drive_for(p)
+    law, spring = hertz_law(drive), pad_spring(drive)
+    top = min(p.contact.fit_force_max, float(law.force(drive.pad_depth)))  # where the pad bottoms out
     assert top > 5.0  # the acceptance range, 0.1-5 N, is inside
     delta = law.indentation(np.geomspace(0.1, top, 2000))
     ratio = spring.force(delta) / law.force(delta)
@@ -58,7 +60,7 @@ def test_piecewise_spring_follows_hertz(kind):
 def test_pad_force_indentation_is_hertz_whatever_the_part_weighs(kind, part_mass):
     p = _params(kind)
     press = press_pad(p, FORCES, part_mass=part_mass)
-    ref = hertz_law(p).indentation(FORCES)
+    ref = hertz_law(drive_for(p)).indentation(FORCES)
     np.testing.assert_allclose(press.indentation, ref, rtol=0.15)  # the issue's 15 %
 
 

@@ -16,8 +16,8 @@ from gripper.calibration.pneumatic_fit import (
     stale_reasons,
 )
 from gripper.core.params import PNEUMATIC_CALIBRATION_FILE, GripperParams
+from gripper.datasheets.regulator import RESPONSE_FRACTION, regulator_datasheet
 from gripper.model.builders import build_gripper_spec
-from gripper.pneumatic.regulator import RESPONSE_FRACTION, regulator_datasheet
 from gripper.references.actuator_bending import ActuatorRecord
 from gripper.references.pneumatic_params import PneumaticActuator
 
@@ -112,13 +112,14 @@ def test_pneumatic_trial_grasps_the_block():
 
 
 def test_pneumatic_set_points_are_checked():
-    from gripper.experiments.controller import check_set_point
+    from gripper.drives import drive_for
     from gripper.experiments.protocol import GraspProtocol
 
+    drive = drive_for(pneumatic())
     with pytest.raises(ValueError, match=r"^protocol.grip_pressure: must be in \(0, 250000\] Pa"):
-        check_set_point(GraspProtocol(grip_pressure=300e3), pneumatic())
+        drive.check_set_point(GraspProtocol(grip_pressure=300e3))
     with pytest.raises(ValueError, match="^protocol.policy: the pneumatic gripper"):
-        check_set_point(GraspProtocol(policy="per_object"), pneumatic())
+        drive.check_set_point(GraspProtocol(policy="per_object"))
 
 
 def test_environment_with_the_pneumatic_gripper():
@@ -162,10 +163,10 @@ def test_a_pneumatic_study_refuses_the_cable_responses(tmp_path):
     study = tmp_path / "s.toml"
     study.write_text('[study]\nname = "x"\ndesign = "one_at_a_time"\n[fixed]\n"actuation.kind" = "pneumatic"\n'
                      '[vary]\n"pneumatic.n_segments" = [4]\n[responses]\nbending = { r_max = 0.45 }\n')
-    with pytest.raises(ValueError, match="responses.bending: drives the cable finger's servo"):
+    with pytest.raises(ValueError, match="responses.bending: the pneumatic gripper's drive has no such response"):
         load_study(study)
     shipped = load_study("pneumatic_segments")
-    assert shipped.base.pneumatic_fingers
+    assert shipped.base.actuation.kind == "pneumatic"
 
 
 def test_random_commands_keep_the_pneumatic_gripper_stable():

@@ -1,8 +1,8 @@
 import pytest
 
 from gripper.core.params import GripperParams
-from gripper.servo.datasheet import SERVO_PRESETS
-from gripper.servo.datasheet_check import measure_servo
+from gripper.datasheets.servo import SERVO_PRESETS
+from gripper.drives.cable.datasheet_check import measure_servo
 
 
 @pytest.mark.parametrize("preset", sorted(SERVO_PRESETS))

@@ -11,6 +11,7 @@ import gripper.sim.probes as probes_mod
 import gripper.sim.scene as scene_mod
 import gripper.sim.stepping as stepping_mod
 from gripper.core.params import GripperParams
+from gripper.drives import drive_for
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.pullout import run_pullout
 from gripper.experiments.trial import run_trial, sample_placement
@@ -148,7 +149,7 @@ def _close_on(name, *, at_grasp_height=False, placed_as=None):
         d.qpos[m.jnt_qposadr[m.joint("lift_z").id]] = z
         u[:, m.actuator("lift_z").id] = z
     mujoco.mj_forward(m, d)
-    probe = probes_mod.ObjectProbe(m, obj, p.layout.n_fingers)
+    probe = probes_mod.ObjectProbe(m, obj, p.layout.n_fingers, drive_for(p))
     stepper = stepping_mod.ChunkStepper(m, d)
     u[:, probe.servo] = 2.0  # close on the object
     stepper.step(u)
@@ -186,7 +187,7 @@ def test_bag_pack_does_not_sink_through_the_film():
 
 
 def test_grasp_outcome_does_not_depend_on_the_time_step():
-    """The closed cut's compliance is a material property (gripper.model.closure), so halving the step
+    """The closed cut's compliance is a material property (gripper.drives.cable.closure), so halving the step
     changes the outcome not at all and the squeeze little. With the rigid stop, whose overrun
     grows as the step squared, this cylinder is held at 2 ms and drops out in the hold at 1 ms.
     The envelope grasp is the one this was measured on; the fingertip grasp's peak force is
@@ -202,7 +203,7 @@ def test_grasp_squeeze_converges_in_the_step(obj):
     With 0.16.0's contact (MuJoCo's default softness on the elements) the cylinder's envelope
     grasp squeezed 11.39 N at 1 ms and 9.90 N at 2 ms (15 %), and the fingertip grasp 25-35 %
     less at 2 ms: the contact's stiffness scaled with the step's effective metric. The pads carry
-    the silicone's law in N/m (gripper.model.pads), so the squeeze is the finger's statics'."""
+    the silicone's law in N/m (gripper.parts.pads), so the squeeze is the finger's statics'."""
     recs = [run_trial(obj, seed=1, index=0, protocol=GraspProtocol(timestep=dt, chunk_steps=round(0.04 / dt)))
             for dt in (0.001, 0.002)]
     assert all(r["status"] == "ok" and r["success"] for r in recs)

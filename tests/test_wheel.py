@@ -26,10 +26,11 @@ import gymnasium as gym
 import mujoco
 import gripper
 from gripper import GripperParams, run_trial
-from gripper.core.resources import DEFAULT_CALIBRATION_DIR, MODEL_DIR
+from gripper.core.resources import DEFAULT_CALIBRATION_DIR, MODELS_DIR
 assert Path(gripper.__file__).is_relative_to(sys.prefix), gripper.__file__
 assert not (Path(gripper.__file__).parent / "models").is_symlink()
-m = mujoco.MjModel.from_xml_path(str(MODEL_DIR / "scene.xml"))
+m = mujoco.MjModel.from_xml_path(str(MODELS_DIR / "soft_gripper" / "scene.xml"))
+assert mujoco.MjModel.from_xml_path(str(MODELS_DIR / "pneumatic_gripper" / "scene.xml")).nu == 7
 assert (DEFAULT_CALIBRATION_DIR / "calibration.json").is_file()
 rec = run_trial("block", seed=0, index=0, params=GripperParams())
 env = gym.make("gripper:SoftGripperGrasp-v8", objects="block")

@@ -71,7 +71,7 @@ def _protocol_table() -> str:
 
 
 def _sensing_table() -> str:
-    from gripper.servo.sensing import ServoSensing
+    from gripper.drives.cable.sensing import ServoSensing
 
     return _fields_table(((ServoSensing, "sensing"),), ".4g")
 
@@ -125,7 +125,7 @@ def _pneumatic_finger_table() -> str:
 
 
 def _regulator_table() -> str:
-    from gripper.pneumatic.regulator import REGULATOR_PRESETS
+    from gripper.datasheets.regulator import REGULATOR_PRESETS
 
     lines = ["| preset | range [kPa] | supply max [kPa] | response time [s] | linearity [% F.S.] | "
              "monitor accuracy [% F.S.] | source |", "|---|---|---|---|---|---|---|"]
@@ -136,7 +136,7 @@ def _regulator_table() -> str:
 
 
 def _pressure_sensing_table() -> str:
-    from gripper.pneumatic.sensing import PressureSensing
+    from gripper.drives.pneumatic.sensing import PressureSensing
 
     return _fields_table(((PressureSensing, "pressure_sensing"),), ".4g")
 

@@ -44,6 +44,7 @@ from gripper.core.fields import Validated
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
+from gripper.drives import drive_for
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
 from gripper.experiments.trial import run_trial
@@ -92,9 +93,8 @@ class BenchConfig(Validated):
         self.params.validate()
         self.protocol.validate()
         self.noise.validate()
-        from gripper.experiments.controller import check_set_point
 
-        check_set_point(self.protocol, self.params)
+        drive_for(self.params).check_set_point(self.protocol)
         return self
 
     def identity(self) -> dict:

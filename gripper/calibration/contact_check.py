@@ -1,6 +1,6 @@
 """The hinge-chain finger in contact, checked against the continuum body (issue 44, item 3).
 
-Two tests, each run on the hinge chain (:func:`gripper.model.builders.build_bending_spec`: one
+Two tests, each run on the hinge chain (:func:`gripper.drives.cable.finger.build_bending_spec`: one
 finger clamped at B1, bending in the horizontal plane, grasping face towards world +y) and on
 the continuum reference's discretisation of the same body
 (:func:`gripper.references.finger_mesh.finger_mesh`, clamped over ``CLAMP_LENGTH`` as in
@@ -58,8 +58,8 @@ import numpy as np
 
 from gripper.core.params import FingerGeometry, GripperParams
 from gripper.core.resources import DEFAULT_CALIBRATION_DIR
-from gripper.model.builders import build_bending_spec
-from gripper.model.names import FingerNames
+from gripper.drives.cable.finger import build_bending_spec
+from gripper.parts.names import FingerNames
 from gripper.references.continuum import FLEX_RADIUS, ReferenceConfig, ReferenceFinger, kabsch_angles
 from gripper.references.convergence import MEASURE_SCALE, linear_finger, solve_clamped
 from gripper.references.finger_mesh import FingerMesh, MeshResolution

@@ -1,6 +1,6 @@
 """Fit the hinge-and-spring finger to a bending record (reference run or bench data).
 
-The hinge model (one finger of :func:`gripper.model.builders.add_finger`, the same parameters) is driven
+The hinge model (one finger of :func:`gripper.drives.cable.finger.add_finger`, the same parameters) is driven
 by the record's cable tension through a tendon force on the same cable path (guide, one via per
 element, knot at the tip), so the fit compares like with like: per-element angles and the tip
 point at equal tension. Free parameters, in log space and bounded: the stiffness of every hinge
@@ -43,8 +43,9 @@ from mujoco import minimize
 
 from gripper.core.fields import Validated
 from gripper.core.params import GripperParams
-from gripper.model.builders import add_defaults, add_element_meshes, add_finger, set_options
-from gripper.model.names import FingerNames
+from gripper.drives.cable.finger import add_element_meshes, add_finger
+from gripper.parts.defaults import add_defaults, set_options
+from gripper.parts.names import FingerNames
 from gripper.references.continuum import BendingRecord
 
 # Static runs (the finger at rest at each static point's tension) use their own model: the

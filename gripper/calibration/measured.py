@@ -58,7 +58,7 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
 
     ``closure_angle_deg``: the design's closure angle [deg]; given, a row whose element angles
     put a hinge more than ``CLOSED_CUT_MARGIN_DEG`` past it is refused. The fit finds the hinge
-    springs of the open cuts; past closure the squeezed teeth carry the load (gripper.model.closure),
+    springs of the open cuts; past closure the squeezed teeth carry the load (gripper.drives.cable.closure),
     and fitting springs to such rows would make them too stiff.
 
     ``max_tension_N``: the highest tension the servo can pull [N], ``ServoParams.max_cable_tension``

@@ -1,4 +1,4 @@
-"""Fit the pneumatic finger (:mod:`gripper.pneumatic.chamber`) to paper 001's actuator in finite
+"""Fit the pneumatic finger (:mod:`gripper.drives.pneumatic.chamber`) to paper 001's actuator in finite
 elements (:mod:`gripper.references.actuator_bending`), and write its calibration.
 
 The hinge chain is compared with the reference as the reference was loaded: one finger in the
@@ -37,9 +37,9 @@ from scipy.optimize import root
 from gripper.core.hashing import stable_hash
 from gripper.core.params import PNEUMATIC_CALIBRATION_FILE, GripperParams
 from gripper.core.provenance import versions
-from gripper.model.builders import add_defaults, set_options
-from gripper.model.names import FingerNames
-from gripper.pneumatic.chamber import add_pneumatic_finger, add_segment_meshes
+from gripper.drives.pneumatic.chamber import add_pneumatic_finger, add_segment_meshes
+from gripper.drives.pneumatic.drive import PneumaticDrive
+from gripper.parts.defaults import add_defaults, set_options
 from gripper.references.actuator_bending import ActuatorRecord
 from gripper.references.pneumatic_params import PneumaticActuator
 
@@ -77,11 +77,13 @@ class ChainStatics:
     def __init__(self, p: GripperParams):
         self.p = p
         spec = mujoco.MjSpec()
+        drive = PneumaticDrive(p)
         set_options(spec, p)
+        drive.configure(spec)
         spec.modelname = "pneumatic_calibration"
         defaults = add_defaults(spec, p)
         add_segment_meshes(spec, p)
-        self.names = FingerNames("f0", p.pneumatic.n_segments, pneumatic=True)
+        self.names = drive.names(0)
         add_pneumatic_finger(spec, spec.worldbody, p, self.names, [0, 0, 0], [1, 0, 0, 0], defaults)
         spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT
         self.model = spec.compile()

@@ -24,7 +24,7 @@ def design(args, *, simulates: bool = True, cable_only: str | None = None) -> Gr
     ``cable_only``: the command (e.g. ``"gripper bend"``) tests the cable finger only, and refuses
     the pneumatic gripper in one line."""
     p = _read_params(args)
-    if cable_only and p.pneumatic_fingers:
+    if cable_only and p.actuation.kind != "cable":
         raise ValueError(f"--actuation: {cable_only} tests the cable finger (its cable, servo and cuts); the "
                          "pneumatic gripper runs bench, envelope, video, check, study and the environment")
     if simulates:
@@ -40,7 +40,7 @@ def _read_params(args) -> GripperParams:
     if actuation is not None:
         p = p.replace(actuation=p.actuation.replace(kind=actuation)).validate()
     springs = getattr(args, "springs", "calibrated")
-    if p.pneumatic_fingers and (springs != "calibrated" or getattr(args, "calibration", None)):
+    if p.actuation.kind != "cable" and (springs != "calibrated" or getattr(args, "calibration", None)):
         raise ValueError("--springs/--calibration: set the cable finger's springs; the pneumatic finger's come "
                          "from its own calibration ('gripper calibrate --reference actuator')")
     if springs != "calibrated":

@@ -50,7 +50,7 @@ class FieldSpec:
     hi: float | None = None
     lo_open: bool = False
     hi_open: bool = False
-    choices: tuple[str, ...] = ()
+    choices: tuple[str, ...] | list[str] = ()
     source: str = ""
     allow_empty: bool = False
 
@@ -111,11 +111,12 @@ class FieldSpec:
 
 def param(default: Any, unit: str, *, gt: float | None = None, ge: float | None = None,
           lt: float | None = None, le: float | None = None, integer: bool = False,
-          choices: tuple[str, ...] = (), numbers: bool = False, allow_empty: bool = False,
+          choices: tuple[str, ...] | list[str] = (), numbers: bool = False, allow_empty: bool = False,
           source: str = "") -> Any:
     """A dataclass field with its :class:`FieldSpec` (``gt``/``ge``: lower bound, exclusive or
     inclusive; ``lt``/``le``: upper bound). A bool default makes a flag, ``choices`` a choice,
-    ``numbers`` a list of numbers (``allow_empty``: the list may be empty)."""
+    ``numbers`` a list of numbers (``allow_empty``: the list may be empty). ``choices`` given as a
+    list stays that list (a registry that grows: its current entries are allowed)."""
     if isinstance(default, bool):
         kind = "bool"
     elif choices:
@@ -126,8 +127,8 @@ def param(default: Any, unit: str, *, gt: float | None = None, ge: float | None 
         kind = "integer" if integer else "number"
     spec = FieldSpec(unit=unit, kind=kind, lo=gt if gt is not None else ge,
                      hi=lt if lt is not None else le, lo_open=gt is not None,
-                     hi_open=lt is not None, choices=tuple(choices), source=source,
-                     allow_empty=allow_empty)
+                     hi_open=lt is not None, source=source, allow_empty=allow_empty,
+                     choices=choices if isinstance(choices, list) else tuple(choices))
     return dataclasses.field(default=default, metadata={"spec": spec})
 
 

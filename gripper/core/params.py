@@ -27,8 +27,8 @@ from gripper.core.fields import FieldSpec, Validated, check_fields, field_specs,
 from gripper.core.resources import DEFAULT_CALIBRATION_DIR, PNEUMATIC_CALIBRATION_DIR
 from gripper.core.units import DEG
 from gripper.core.user_files import read_user_data
-from gripper.pneumatic.regulator import REGULATOR_PRESETS, RegulatorDatasheet, regulator_datasheet
-from gripper.servo.datasheet import SERVO_PRESETS, ServoDatasheet, servo_datasheet
+from gripper.datasheets.regulator import REGULATOR_PRESETS, RegulatorDatasheet, regulator_datasheet
+from gripper.datasheets.servo import SERVO_PRESETS, ServoDatasheet, servo_datasheet
 
 # paper 000, Table 2: torsion spring stiffness 1.9e-3 N·m/deg = 0.1089 N·m/rad, as printed. The
 # unit is suspect (see docs/consistency.md): read per radian it is 1.9e-3 N·m/rad.
@@ -70,7 +70,9 @@ CALIBRATED_STIFFNESS, CALIBRATED_DAMPING, CALIBRATED_REST_ANGLE_DEG = _committed
 # block is the actuator's shape as the finger's collision body takes it, and ``fitted`` the
 # springs and the pressure's moment (per unit length: the finger's segment count is free).
 PNEUMATIC_CALIBRATION_FILE = PNEUMATIC_CALIBRATION_DIR / "calibration.json"
-ACTUATIONS = ("cable", "pneumatic")
+# The drives' names (``actuation.kind``): the two shipped, and any a user registers with
+# gripper.drives.register_drive (a live list: validation and help read it as it is).
+ACTUATIONS = ["cable", "pneumatic"]
 
 
 def _committed_pneumatic() -> dict[str, float]:
@@ -230,7 +232,7 @@ class HingeSprings(Validated):
         damping: per-hinge damping, fitted to the reference's transient.
         rest_angle_deg: spring rest angle of each hinge; 0 = moulded straight.
         closure: how a hinge resists closing past its closure angle, where the faces of its
-            cut meet (:mod:`gripper.model.closure`; the model README gives the figures):
+            cut meet (:mod:`gripper.drives.cable.closure`; the model README gives the figures):
 
             - ``"teeth"`` (default): the silicone teeth on either side of the cut are
               squeezed, a neo-Hookean solid of the finger's Young's modulus, stiffening as
@@ -251,7 +253,7 @@ class HingeSprings(Validated):
                                        source="fitted: the committed calibration")
     rest_angle_deg: tuple[float, ...] = param(CALIBRATED_REST_ANGLE_DEG, "deg", gt=-90, lt=90,
                                               numbers=True, source="fitted: the committed calibration")
-    closure: str = param("teeth", "-", choices=CLOSURE_MODELS, source="gripper.model.closure")
+    closure: str = param("teeth", "-", choices=CLOSURE_MODELS, source="gripper.drives.cable.closure")
     closure_stiffness: float = param(1.0, "N·m/rad", gt=0,
                                      source="assumed: a placeholder of the teeth estimate's order")
 
@@ -330,7 +332,7 @@ class ServoParams(Validated):
     """The servo that reels each cable in: a datasheet preset, a spool and controller tuning.
 
     Attributes:
-        preset: key of :data:`gripper.servo.datasheet.SERVO_PRESETS`.
+        preset: key of :data:`gripper.datasheets.servo.SERVO_PRESETS`.
         spool_radius: radius the cable winds on.
         saturation_error_deg: position error at which the PD asks for the stall torque.
         damping_ratio: damping ratio of the position loop on the rotor inertia.
@@ -341,7 +343,7 @@ class ServoParams(Validated):
     SECTION = "servo"
 
     preset: str = param("hobby_6v", "-", choices=tuple(SERVO_PRESETS),
-                        source="the datasheets in gripper.servo.datasheet")
+                        source="the datasheets in gripper.datasheets.servo")
     spool_radius: float = param(0.020, "m", gt=0,
                                 source="assumed: 180° of travel reels in 63 mm, enough to close every cut")
     saturation_error_deg: float = param(0.6, "deg", gt=0, lt=90,
@@ -440,7 +442,7 @@ _PN_SHAPE = "paper 001's actuator (gripper.references.pneumatic_params), as the 
 @dataclass(frozen=True)
 class PneumaticFinger(Validated):
     """The pneumatic finger: paper 001's actuator as a chain of rigid segments on hinges at its
-    neutral layer, bent by its chamber pressure (``gripper.pneumatic.chamber``).
+    neutral layer, bent by its chamber pressure (``gripper.drives.pneumatic.chamber``).
 
     Finger frame as the cable finger's: x from the palm to the tip, z from the back (the
     actuator's round top, z = 0) to the grasping face (the fabric side, z = ``height``). The hinges
@@ -464,7 +466,7 @@ class PneumaticFinger(Validated):
             hinge (a uniform section).
         damping_ratio: each hinge's damping, as a ratio of critical for its spring on the tip
             segment's inertia.
-        regulator: key of :data:`gripper.pneumatic.regulator.REGULATOR_PRESETS`.
+        regulator: key of :data:`gripper.datasheets.regulator.REGULATOR_PRESETS`.
         pressure_max: highest chamber pressure the regulator is set to.
     """
 
@@ -485,7 +487,7 @@ class PneumaticFinger(Validated):
     damping_ratio: float = param(0.5, "-", gt=0, le=10,
                                  source="assumed: paper 000 Table 2's modal damping ratio of its silicone finger")
     regulator: str = param("smc_itv0030", "-", choices=tuple(REGULATOR_PRESETS),
-                           source="the datasheets in gripper.pneumatic.regulator")
+                           source="the datasheets in gripper.datasheets.regulator")
     pressure_max: float = param(250e3, "Pa", gt=0, le=1e6,
                                 source="paper 001 §2.3 Step 3: 0-250 kPa, the calibration's range")
 
@@ -496,7 +498,7 @@ class PneumaticFinger(Validated):
     @property
     def pitch(self) -> float:
         """Hinge spacing [m]: the length over the hinge count (the base and tip segments are half
-        a pitch long, :mod:`gripper.pneumatic.chamber`)."""
+        a pitch long, :mod:`gripper.drives.pneumatic.chamber`)."""
         return self.length / self.n_hinges
 
     @property
@@ -534,7 +536,7 @@ CONTACT_MODELS = ("pads", "solver")
 @dataclass(frozen=True)
 class PadContact(Validated):
     """How the fingers meet a part: the silicone's contact law and the fingers' surface shape
-    (``gripper.model.pads``; the derivation and its checks: ``docs/contact.md``).
+    (``gripper.parts.pads``; the derivation and its checks: ``docs/contact.md``).
 
     ``model = "pads"`` (the default): each finger element (cable) or segment (pneumatic) carries
     its collision surface on a pad body that slides into it along the grasping face's normal,
@@ -583,7 +585,8 @@ class SimOptions(Validated):
     Attributes:
         timestep: physics step.
         integrator: MuJoCo integrator (the pneumatic gripper always takes MuJoCo's discrete
-            integrator, implicit in its stiff hinge springs: ``gripper.model.builders.set_options``).
+            integrator, implicit in its stiff hinge springs:
+            ``gripper.drives.pneumatic.drive.PneumaticDrive.configure``).
         gravity: gravitational acceleration along -z.
     """
 
@@ -631,16 +634,6 @@ class GripperParams(Validated):
     actuation: Actuation = field(default_factory=Actuation)
     pneumatic: PneumaticFinger = field(default_factory=PneumaticFinger)
     contact: PadContact = field(default_factory=PadContact)
-
-    @property
-    def pneumatic_fingers(self) -> bool:
-        """True when the gripper has pneumatic fingers (``actuation.kind``)."""
-        return self.actuation.kind == "pneumatic"
-
-    @property
-    def finger_length(self) -> float:
-        """Length of the gripper's fingers, whichever they are [m]."""
-        return self.pneumatic.length if self.pneumatic_fingers else self.finger.length
 
     def validate(self) -> Self:
         """Check every field; return ``self``.

@@ -1,9 +1,11 @@
 """Files shipped with the package, found the same way in a source checkout and in an installed
 wheel.
 
-- ``models/soft_gripper/`` (the repository's top-level ``models/``, reached through the package's
-  ``gripper/models`` link and carried inside the wheel): the gripper's MJCF in MuJoCo Menagerie
-  layout: ``soft_gripper.xml``, ``scene.xml`` (which includes it), README, CHANGELOG, LICENSE;
+- ``models/<name>/`` (the repository's top-level ``models/``, reached through the package's
+  ``gripper/models`` link and carried inside the wheel): each shipped gripper's MJCF in MuJoCo
+  Menagerie layout (``soft_gripper``: the cable gripper, ``pneumatic_gripper``): ``<name>.xml``,
+  ``scene.xml`` (which includes it), README with a picture, CHANGELOG, LICENSE
+  (:mod:`gripper.sim.model_files`);
 - ``gripper/data/calibration/``: an example bench-data CSV for ``gripper calibrate --data``, and
   ``default/``, the default design's committed calibration (``calibration.json``, its
   reference run, convergence study, error table and report), and ``pneumatic/``, the default
@@ -20,7 +22,6 @@ from pathlib import Path
 PACKAGE_DIR = Path(str(files("gripper")))
 DATA_DIR = PACKAGE_DIR / "data"
 MODELS_DIR = PACKAGE_DIR / "models"
-MODEL_DIR = MODELS_DIR / "soft_gripper"
 STUDIES_DIR = DATA_DIR / "studies"
 CALIBRATION_EXAMPLES_DIR = DATA_DIR / "calibration"
 DEFAULT_CALIBRATION_DIR = CALIBRATION_EXAMPLES_DIR / "default"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 # Grasp trials, the environment, the crush test: 2 ms with MuJoCo's discrete integrator. The
 # flex objects (balloon, paper box, bag) are stable there, and the closed cuts are matched to
-# their design under that integrator at this step (gripper.model.closure), so the outcome does
+# their design under that integrator at this step (gripper.drives.cable.closure), so the outcome does
 # not change with the step (the model README's convergence check).
 TRIAL_TIMESTEP = 2.0e-3
 

@@ -30,7 +30,7 @@ TIP_FLOOR_CLEARANCE = 0.004
 # Horizontal set-point range of the x/y actions [m]: ±20 mm covers the ±10 mm pose noise twice.
 XY_ACTION_RANGE = 0.020
 # Palm speed at a velocity action of +-1 [m/s] (``palm_control="velocity"``): the scripted grasp's
-# approach and lift speed (scripts/scripted_policy.py).
+# approach and lift speed (gripper.envs.scripted_grasp).
 PALM_SPEED = 0.10
 # Workspace: the object has left it beyond this horizontal distance from the palm axis's home
 # [m] (a gripper of 57 mm radius cannot reach it) or below the floor by 20 mm (fell through).

@@ -172,7 +172,7 @@ class SoftGripperGraspEnv(gym.Env):
     | sensed_servo_current | 99-102 | 4 | A |
     | sensed_spool_tension | 103-106 | 4 | N |
 
-    The ``sensed_*`` entries are what the servos report (:mod:`gripper.servo.sensing`: present
+    The ``sensed_*`` entries are what the servos report (:mod:`gripper.drives.cable.sensing`: present
     position in encoder counts, present current in 2.69 mA units, a spool load cell, each with
     its noise, drawn from the episode's seed).
 
@@ -294,7 +294,7 @@ class SoftGripperGraspEnv(gym.Env):
       registered.
     - v8, package 0.17.0: contact from the silicone (issue 44): every finger element sits on a
       compliant pad whose springs follow Hertz's law for its material, the elements' edges are
-      rounded, and rigid parts' contacts are near-rigid (``gripper.model.pads``,
+      rounded, and rigid parts' contacts are near-rigid (``gripper.parts.pads``,
       ``docs/contact.md``), so the squeeze and holding forces, and with them every episode's
       dynamics, change. The spaces, rewards and episode rules are unchanged. v7 is no longer
       registered.

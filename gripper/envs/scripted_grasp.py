@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from gripper.drives import drive_for
 from gripper.envs.config import HELD, EnvConfig
 from gripper.envs.task import observation_divisor, observation_structure
 from gripper.objects.library import RIGID_CLOSE as CLOSE_ANGLE  # rad: rigid objects' closing angle
@@ -34,6 +35,8 @@ CENTRED = 0.002         # m: the palm counts as over the object within this hori
 # rad: a servo set-point past the reel's slack and the fingers' first curl; with the palm above
 # the grasp height it says the grasp is being lifted
 LIFTING_ANGLE = 0.5
+# The observation parts the script reads besides the palm's and the object's
+SCRIPT_OBSERVES = ("servo_setpoint", "sensed_spool_tension")
 
 
 class ScriptedGrasp:
@@ -41,26 +44,30 @@ class ScriptedGrasp:
     servo and palm actions; either action mode; with or without x/y actions).
 
     Raises:
-        ValueError: the environment's actions are position set-points or its gripper is the
-            pneumatic one (this script reels cables).
+        ValueError: the environment's actions are position set-points or its gripper's drive
+            does not observe a servo set-point and a sensed spool tension (this script reels
+            cables: the cable drive's observations).
     """
 
     def __init__(self, config: EnvConfig):
         if config.servo_control != "velocity" or config.palm_control != "velocity":
             raise ValueError("ScriptedGrasp: needs servo_control and palm_control 'velocity'")
-        if config.params.pneumatic_fingers:
-            raise ValueError("ScriptedGrasp: the scripted grasp reels cables; the pneumatic gripper has none")
         self.cfg = config
         self.divisor = observation_divisor(config)
         self.struct = observation_structure(config)
+        missing = [name for name in SCRIPT_OBSERVES if name not in self.struct]
+        if missing:
+            raise ValueError(f"ScriptedGrasp: the scripted grasp reels cables; this gripper "
+                             f"(actuation.kind = {config.params.actuation.kind!r}) observes no {', '.join(missing)}")
         p = config.params
-        self.z_grasp = p.finger_length + HELD.tip_clearance  # palm-face height at the grasp [m]
+        drive = drive_for(p)
+        self.z_grasp = drive.finger_length + HELD.tip_clearance  # palm-face height at the grasp [m]
         self.z_top = p.lift.home_height
         dt = config.control_period
         self.palm_step = config.palm_speed * dt      # set-point change at an action of 1 [m]
-        self.servo_step = p.servo.slew_rate * dt     # [rad]
+        self.servo_step = drive.command_rate(HELD) * dt     # [rad]
         # the protocol's closing rate (cable speed over spool radius) as a fraction of the slew rate
-        self.close_action = HELD.close_speed / p.servo.spool_radius / p.servo.slew_rate
+        self.close_action = drive.open_loop_rate(HELD) / drive.command_rate(HELD)
         self.n_servo = config.n_fingers if config.action_mode == "fingers" else 1
 
     def _part(self, obs: np.ndarray, name: str) -> np.ndarray:

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from gripper.drives import drive_for
 from gripper.envs.config import (
     CONTACT_FORCE,
     HELD,
@@ -36,12 +37,9 @@ from gripper.envs.config import (
 )
 from gripper.experiments.protocol import TrialNoise, is_held
 from gripper.experiments.trial import sample_placement
-from gripper.model.names import FingerNames, finger_name
 from gripper.objects.grasp_object import GraspObject
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement
-from gripper.pneumatic.sensing import PressureSensor
-from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.damage import running_damage_measure
 from gripper.sim.probes import STRAIN_DAMAGE_KINDS, ObjectProbe
 from gripper.sim.scene import build_grasp_scene, trial_params
@@ -51,31 +49,21 @@ CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
 
 
 def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
-    """Observation layout: name -> (start index, size, unit). The pneumatic gripper's
-    (``params.actuation.kind = "pneumatic"``) has no cable or servo: its regulators' pressures
-    instead, as fractions of the highest set-point (``pneumatic.pressure_max``)."""
+    """Observation layout: name -> (start index, size, unit). The drive's own parts (its
+    ``state_observations``, one entry per finger each) follow the hinge velocities, and what its
+    hardware reports (``sensed_observations``) comes last: the cable gripper's cable, servo and
+    spool readings; the pneumatic gripper's regulators' pressures, as fractions of the highest
+    set-point (``pneumatic.pressure_max``)."""
     nf = cfg.n_fingers
-    if cfg.params.pneumatic_fingers:
-        ns = cfg.params.pneumatic.n_segments
-        parts = [("hinge_angle", nf * ns, "rad"), ("hinge_velocity", nf * ns, "rad/s"),
-                 ("chamber_pressure", nf, "-"), ("pressure_setpoint", nf, "-"),
-                 ("palm_height", 1, "m"), ("palm_setpoint", 3, "m"),
-                 ("object_pos_rel_palm", 3, "m"), ("object_quat", 4, "-"),
-                 ("pad_force", nf * ns, "N"), ("finger_object_force", nf, "N"),
-                 # what the regulators report (gripper.pneumatic.sensing: quantised, noisy)
-                 ("sensed_pressure", nf, "-")]
-        return _layout(parts)
-    nh = cfg.params.finger.n_segments - 1
+    drive = drive_for(cfg.params)
+    names = drive.names(0)
+    nh, ns = len(names.hinges), names.n_segments
     parts = [("hinge_angle", nf * nh, "rad"), ("hinge_velocity", nf * nh, "rad/s"),
-             ("cable_shortening", nf, "m"), ("cable_tension", nf, "N"), ("servo_angle", nf, "rad"),
-             ("servo_setpoint", nf, "rad"),
+             *[(name, nf, unit) for name, unit in drive.state_observations],
              ("palm_height", 1, "m"), ("palm_setpoint", 3, "m"),
              ("object_pos_rel_palm", 3, "m"), ("object_quat", 4, "-"),
-             ("pad_force", nf * cfg.params.finger.n_segments, "N"),
-             ("finger_object_force", nf, "N"),
-             # what the servos report (gripper.servo.sensing: quantised, noisy)
-             ("sensed_servo_position", nf, "rad"), ("sensed_servo_current", nf, "A"),
-             ("sensed_spool_tension", nf, "N")]
+             ("pad_force", nf * ns, "N"), ("finger_object_force", nf, "N"),
+             *[(name, nf, unit) for name, unit in drive.sensed_observations]]
     return _layout(parts)
 
 
@@ -104,31 +92,24 @@ class Scene:
         self.cfg, self.obj, self.params = cfg, obj, p
         self.model = build_grasp_scene(p, obj, place)
         m = self.model
-        self.probe = ObjectProbe(m, obj, cfg.n_fingers)
+        self.drive = drive = drive_for(p)
+        self.probe = ObjectProbe(m, obj, cfg.n_fingers, drive)
         nf = cfg.n_fingers
-        self.pneumatic = p.pneumatic_fingers
-        n_seg = p.pneumatic.n_segments if self.pneumatic else p.finger.n_segments
-        hinges = [h for k in range(nf) for h in FingerNames(finger_name(k), n_seg, self.pneumatic).hinges]
+        names = [drive.names(k) for k in range(nf)]
+        hinges = [h for n in names for h in n.hinges]
         self.hinge_q = np.array([m.jnt_qposadr[m.joint(h).id] for h in hinges])
         self.hinge_v = np.array([m.jnt_dofadr[m.joint(h).id] for h in hinges])
-        reels = [] if self.pneumatic else [m.joint(f"{finger_name(k)}_reel").id for k in range(nf)]
-        self.reel_q = np.array([m.jnt_qposadr[j] for j in reels], dtype=int)
         self.lift_q = {a: m.jnt_qposadr[m.joint(a).id] for a in ("lift_x", "lift_y", "lift_z")
                        if mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, a) >= 0}
         sadr = lambda name: m.sensor_adr[m.sensor(name).id]  # noqa: E731
-        self.tension = (np.zeros(0, dtype=int) if self.pneumatic else
-                        np.array([sadr(f"{finger_name(k)}_cable_tension") for k in range(nf)]))
-        self.pads = np.array([sadr(f"{finger_name(k)}_seg{j}_pad") for k in range(nf)
-                              for j in range(1, n_seg + 1)])
-        self.servo = self.probe.servo  # each finger's drive: its servo, or its chamber's regulator
-        self.sensor: ServoSensor | PressureSensor = (PressureSensor(m, p) if self.pneumatic
-                                                     else ServoSensor(m, p, ServoSensing()))
-        self.spool = p.servo.spool_radius
+        self.pads = np.array([sadr(pad) for n in names for pad in n.pads])
+        self.servo = self.probe.servo  # each finger's drive actuator: its servo, its chamber's regulator, ...
+        self.sensor = drive.sensor(m)
         self.act_lift = {a: m.actuator(a).id for a in self.lift_q}
         self.lift_act_ids = np.array(list(self.act_lift.values()))
         self.home = p.lift.home_height
-        self.z_min = p.finger_length + TIP_FLOOR_CLEARANCE - self.home
-        self.z_start = obj.height + p.finger_length + START_CLEARANCE - self.home
+        self.z_min = drive.finger_length + TIP_FLOOR_CLEARANCE - self.home
+        self.z_start = obj.height + drive.finger_length + START_CLEARANCE - self.home
         self.z_max = 0.0  # the lift's home: palm face at params.lift.home_height
         self.servo_max = float(m.actuator_ctrlrange[self.servo[0], 1])
         self.free_q = (m.jnt_qposadr[m.joint("object_free").id]
@@ -207,8 +188,8 @@ class Scene:
         if self.cfg.palm_control == "velocity":
             self._velocity.append((np.array(palm), self.cfg.palm_speed * dt, np.array(lo), np.array(hi)))
         if self.cfg.servo_control == "velocity":
-            # the servo at its slew rate; the regulator's set-point at the grasp protocol's ramp
-            rate = HELD.pressure_rate if self.pneumatic else self.params.servo.slew_rate
+            # the drive's rate: the servo's slew rate, the regulator's set-point at the grasp protocol's ramp
+            rate = self.drive.command_rate(HELD)
             self._velocity.append((np.asarray(self.servo), rate * dt, 0.0, self.servo_max))
 
 
@@ -307,18 +288,11 @@ def observe(ep: EpisodeState, sens: np.ndarray) -> np.ndarray:
     setpoint = np.zeros(3)
     setpoint[s.palm_xy_slot] = d.ctrl[s.palm_xy_act]
     setpoint[2] = s.home + d.ctrl[s.act_lift["lift_z"]]
-    if isinstance(s.sensor, PressureSensor):
-        full = s.servo_max
-        pr = s.sensor.read(sens, ep.sensor_rng)
-        return np.concatenate([
-            q[s.hinge_q], d.qvel[s.hinge_v], s.sensor.true_pressure(sens) / full, d.ctrl[s.servo] / full,
-            palm[2:3], setpoint, pos, quat, sens[s.pads], s.probe.finger_forces(d), pr.pressure / full])
-    reel = q[s.reel_q]
-    r = s.sensor.read(sens, ep.sensor_rng)
+    m, drive = s.model, s.drive
+    reading = s.sensor.read(sens, ep.sensor_rng)
     return np.concatenate([
-        q[s.hinge_q], d.qvel[s.hinge_v], reel, sens[s.tension], reel / s.spool, d.ctrl[s.servo], palm[2:3],
-        setpoint, pos, quat,
-        sens[s.pads], s.probe.finger_forces(d), r.position, r.current, r.tension])
+        q[s.hinge_q], d.qvel[s.hinge_v], *drive.observe_state(m, d, sens), palm[2:3], setpoint, pos, quat,
+        sens[s.pads], s.probe.finger_forces(d), *drive.observe_sensed(m, reading)])
 
 
 def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.ndarray, cfg: EnvConfig,
@@ -329,7 +303,7 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     height = float(obj_pos[2] - ep.start_pos[2])
     rel = obs[struct["object_pos_rel_palm"][0]:struct["object_pos_rel_palm"][0] + 3]
     # scalar math on 3-vectors: numpy's per-call cost dominates at this size
-    reach = math.dist(rel, (0.0, 0.0, -0.5 * s.params.finger_length))  # to the grasp point
+    reach = math.dist(rel, (0.0, 0.0, -0.5 * s.drive.finger_length))  # to the grasp point
     i = struct["finger_object_force"][0]
     finger = obs[i:i + cfg.n_fingers]  # each finger's normal force on the object, all element faces
     touching = float(np.count_nonzero(finger > CONTACT_FORCE)) / cfg.n_fingers

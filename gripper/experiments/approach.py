@@ -39,14 +39,15 @@ import numpy as np
 
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
+from gripper.drives import drive_for
 from gripper.sim.depth import ObjectEstimate
 
 GRASPS = ("envelope", "fingertip")
 
-# Spool angles at which the free-closing reach is tabulated [rad], and the settling time at
-# each [s]: holding each angle 0.8 s instead moves the table by at most 0.19 mm (reach below the
-# palm) and 0.36 mm (closest approach to the axis), measured at the trials' 2 ms step.
-REACH_ANGLES = np.linspace(0.0, 2.2, 23)
+# The settling time at each command of the free-closing reach's table (the commands are the
+# drive's ``reach_commands``) [s]: holding each spool angle 0.8 s instead moves the table by at
+# most 0.19 mm (reach below the palm) and 0.36 mm (closest approach to the axis), measured at the
+# trials' 2 ms step.
 REACH_SETTLE_S = 0.4
 _REACH: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
 
@@ -75,8 +76,9 @@ def choose_grasp(est: ObjectEstimate, p: GripperParams, proto) -> str:
     """The rule of the module docstring; ``proto.grasp`` other than ``auto`` forces one."""
     if proto.grasp != "auto":
         return proto.grasp
-    tip = proto.fingertip_clearance_for(p.pneumatic_fingers)
-    clears_top = est.height + proto.palm_clearance <= p.finger_length + tip
+    drive = drive_for(p)
+    tip = drive.fingertip_clearance(proto)
+    clears_top = est.height + proto.palm_clearance <= drive.finger_length + tip
     fits = est.radius < p.layout.palm_radius
     return "fingertip" if clears_top and fits else "envelope"
 
@@ -84,28 +86,21 @@ def choose_grasp(est: ObjectEstimate, p: GripperParams, proto) -> str:
 def plan_approach(est: ObjectEstimate, p: GripperParams, proto) -> ApproachPlan:
     """The plan of the module docstring for the estimate ``est``."""
     grasp = choose_grasp(est, p, proto)
+    drive = drive_for(p)
     travel = p.lift.xy_travel
     x, y = (est.x, est.y) if proto.centre else (0.0, 0.0)
     x, y = float(np.clip(x, -travel, travel)), float(np.clip(y, -travel, travel))
     if grasp == "fingertip":
-        z = est.support_z + p.finger_length + proto.fingertip_clearance_for(p.pneumatic_fingers)
+        z = est.support_z + drive.finger_length + drive.fingertip_clearance(proto)
     else:
-        z = est.support_z + max(p.finger_length + proto.tip_clearance, est.height + proto.palm_clearance)
+        z = est.support_z + max(drive.finger_length + proto.tip_clearance, est.height + proto.palm_clearance)
     return ApproachPlan(grasp=grasp, x=x, y=y, palm_z=float(z), support_z=est.support_z,
                         floor_z=est.top_z + proto.palm_clearance)
 
 
-def reach_commands(p: GripperParams) -> np.ndarray:
-    """The drive commands the reach is tabulated at: ``REACH_ANGLES`` of spool [rad], or for the
-    pneumatic gripper as many pressures [Pa] from 0 to its highest set-point."""
-    if p.pneumatic_fingers:
-        return np.linspace(0.0, p.pneumatic.command_max, len(REACH_ANGLES))
-    return REACH_ANGLES.copy()
-
-
 def finger_reach(p: GripperParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The fingers' free-closing reach: drive commands (:func:`reach_commands`: spool angles
-    [rad] or pressures [Pa]), how far below the palm face the lowest point of any finger is [m],
+    """The fingers' free-closing reach: drive commands (the drive's ``reach_commands``: spool
+    angles [rad], pressures [Pa], ...), how far below the palm face the lowest point of any finger is [m],
     and how close to the palm axis any finger comes [m].
 
     Simulated once per design and process (no object; each angle held until at rest, the
@@ -119,20 +114,20 @@ def finger_reach(p: GripperParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def _simulate_reach(p: GripperParams):
-    from gripper.model.names import drive_name
     from gripper.sim.scene import grasp_scene_spec
 
     spec = grasp_scene_spec(p)
     m = spec.compile()
     d = mujoco.MjData(m)
-    servo = [m.actuator(drive_name(k, p.pneumatic_fingers)).id for k in range(p.layout.n_fingers)]
+    drive = drive_for(p)
+    servo = drive.actuator_ids(m)
     palm = m.body("palm").id
     geoms = [g for g in range(m.ngeom) if m.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH
              and m.geom_contype[g] and m.body(m.geom_bodyid[g]).name.startswith("f")]
     mujoco.mj_forward(m, d)
     steps = int(round(REACH_SETTLE_S / m.opt.timestep))
     low, radial = [], []
-    commands = reach_commands(p)
+    commands = drive.reach_commands()
     for a in commands:
         d.ctrl[servo] = a
         for _ in range(steps):
@@ -155,5 +150,5 @@ def fingertip_palm_z(plan: ApproachPlan, p: GripperParams, proto, spool: np.ndar
     pneumatic gripper; the deepest-reaching finger counts), never below ``plan.floor_z``."""
     angles, low, _ = finger_reach(p)
     reach = np.interp(spool, angles, low)
-    return np.maximum(plan.support_z + proto.fingertip_clearance_for(p.pneumatic_fingers) + reach, plan.floor_z)
+    return np.maximum(plan.support_z + drive_for(p).fingertip_clearance(proto) + reach, plan.floor_z)
 

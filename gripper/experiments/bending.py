@@ -22,9 +22,9 @@ import mujoco
 import numpy as np
 
 from gripper.core.params import GripperParams
+from gripper.drives.cable.finger import build_bending_spec
 from gripper.experiments.protocol import BendingConfig
-from gripper.model.builders import build_bending_spec
-from gripper.model.names import FingerNames
+from gripper.parts.names import FingerNames
 from gripper.sim.stability import SimulationUnstable, check_stable
 
 

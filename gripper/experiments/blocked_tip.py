@@ -20,10 +20,10 @@ import mujoco
 import numpy as np
 
 from gripper.core.params import GripperParams
-from gripper.model.builders import add_defaults, set_options
-from gripper.model.names import FingerNames
-from gripper.model.pads import PadMaker, add_pad_meshes
-from gripper.pneumatic.chamber import add_pneumatic_finger, add_segment_meshes
+from gripper.drives import drive_for
+from gripper.parts.defaults import add_defaults, set_options
+from gripper.parts.names import FingerNames
+from gripper.parts.pads import PadMaker, add_pad_meshes
 from gripper.sim.stability import check_stable
 
 SETTLE_S = 1.5  # s per pressure: fifteen of the regulator's 0.1 s time constants
@@ -31,44 +31,47 @@ REST_SPEED = 1e-4  # rad/s: every hinge slower than this at the end of a hold
 
 
 def _scene(p: GripperParams) -> tuple[mujoco.MjModel, FingerNames]:
+    drive = drive_for(p)
     spec = mujoco.MjSpec()
     set_options(spec, p)
+    drive.configure(spec)
     spec.option.gravity = [0.0, 0.0, 0.0]
     defaults = add_defaults(spec, p)
-    add_segment_meshes(spec, p)
+    drive.add_defaults(spec, defaults)
+    drive.add_meshes(spec)
     pads = p.contact.model == "pads"
     if pads:
-        add_pad_meshes(spec, p)
-    names = FingerNames("f0", p.pneumatic.n_segments, pneumatic=True)
-    maker = PadMaker(spec, p, names, defaults) if pads else None
+        add_pad_meshes(spec, drive)
+    maker = PadMaker(spec, drive, drive.names(0), defaults) if pads else None
     # finger frame = world frame: x along the finger, z towards the grasping face
-    add_pneumatic_finger(spec, spec.worldbody, p, names, [0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], defaults, maker)
+    names = drive.add_finger(spec, spec.worldbody, 0, [0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], defaults, maker)
     if maker is not None:
         maker.exclude_neighbours()
-    pf = p.pneumatic
+    drive.tune(spec)
+    n = names.n_segments
     stop = spec.worldbody.add_geom(name="stop", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0.05, 0.05, 0.01],
-                                   pos=[pf.length, 0.0, pf.height], zaxis=[0.0, 0.0, -1.0],
+                                   pos=[drive.finger_length, 0.0, drive.finger_height], zaxis=[0.0, 0.0, -1.0],
                                    contype=0, conaffinity=0)
-    tip = f"f0_seg{pf.n_segments}_pad_collision" if pads else f"f0_seg{pf.n_segments}_collision"
+    tip = f"f0_seg{n}_pad_collision" if pads else f"f0_seg{n}_collision"
     spec.add_pair(geomname1=stop.name, geomname2=tip, condim=1, friction=[0, 0, 0, 0, 0])
     return spec.compile(), names
 
 
 def blocked_tip_force_pneumatic(p: GripperParams, pressures) -> np.ndarray:
-    """The stop's normal force on the blocked tip at rest [N], one per chamber pressure [Pa].
+    """The stop's normal force on the blocked tip at rest [N], one per drive command (chamber
+    pressures [Pa] for the pneumatic gripper, its use here; any drive's finger is built the same
+    way, by its drive).
 
     Raises:
-        ValueError: ``p`` is not the pneumatic gripper, or a pressure outside (0, its set-point range].
+        ValueError: a command outside (0, the drive's command range].
         RuntimeError: the finger did not come to rest, or went unstable.
     """
-    if not p.pneumatic_fingers:
-        raise ValueError("blocked_tip_force_pneumatic: needs the pneumatic gripper (actuation.kind = 'pneumatic')")
     pressures = np.asarray(pressures, dtype=float)
-    top = p.pneumatic.command_max
-    if not np.all((pressures > 0) & (pressures <= top)):
-        raise ValueError(f"blocked_tip_force_pneumatic.pressures: each must be in (0, {top:g}] Pa, "
-                         f"got {pressures.tolist()!r}")
     m, names = _scene(p)
+    top = float(m.actuator_ctrlrange[m.actuator(names.drive).id, 1])
+    if not np.all((pressures > 0) & (pressures <= top)):
+        raise ValueError(f"blocked_tip_force_pneumatic.pressures: each must be in (0, {top:g}], "
+                         f"got {pressures.tolist()!r}")
     d = mujoco.MjData(m)
     act = m.actuator(names.drive).id
     stop = m.geom("stop").id

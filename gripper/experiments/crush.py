@@ -28,6 +28,7 @@ import mujoco
 
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
+from gripper.drives import drive_for
 from gripper.experiments.protocol import CRUSH_HOLD_S, CRUSH_SPEED
 from gripper.model.builders import build_scene_spec
 from gripper.objects.grasp_object import GraspObject
@@ -80,7 +81,7 @@ def crush_test(obj: str | GraspObject, depth: float, *, speed: float = CRUSH_SPE
     apply_canonical_constants(m, obj, Placement())
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
-    probe = ObjectProbe(m, obj, p.layout.n_fingers)
+    probe = ObjectProbe(m, obj, p.layout.n_fingers, drive_for(p))
     plate_geom = m.geom("platen_geom").id
     travel = CRUSH_GAP + depth
     t_move = travel / speed

@@ -39,8 +39,8 @@ def blocked_tip_force(p: GripperParams, r: float) -> float:
     the world) while the servo reels in ``r`` × finger length of cable (quasi-static)."""
     import mujoco
 
-    from gripper.model.builders import build_bending_spec
-    from gripper.model.names import FingerNames
+    from gripper.drives.cable.finger import build_bending_spec
+    from gripper.parts.names import FingerNames
     from gripper.sim.stability import check_stable
 
     spec = build_bending_spec(p, timestep=PAPER_BENDING_TIMESTEP)

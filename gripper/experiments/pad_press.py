@@ -1,5 +1,5 @@
 """A finger pad pressed by a rigid part: the pad's force-indentation as the grasp models realise
-it, to check against Hertz's closed form (:func:`gripper.model.pads.hertz_law`).
+it, to check against Hertz's closed form (:func:`gripper.parts.pads.hertz_law`).
 
 One element of the finger (the cable finger's middle element, or the pneumatic finger's full
 segment) is fixed with its grasping face up, on its pad exactly as the grippers build it (with
@@ -25,10 +25,10 @@ import numpy as np
 
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
-from gripper.model.builders import add_defaults
-from gripper.model.names import FingerNames
-from gripper.model.pads import PadMaker, add_pad_meshes
+from gripper.drives import drive_for
 from gripper.objects.scene_objects import RIGID_CONTACT_SOLIMP, RIGID_CONTACT_SOLREF
+from gripper.parts.defaults import add_defaults
+from gripper.parts.pads import PadMaker, add_pad_meshes
 
 PLATE_HALF = (0.03, 0.03, 0.002)  # m: a plate wider than any pad
 # Each force is held until the plate is at rest: speed below REST_SPEED (1 µm/s, a thousandth of
@@ -54,21 +54,13 @@ def _pad_scene(p: GripperParams, part_mass: float, timestep: float) -> mujoco.Mj
     spec.option.gravity = [0.0, 0.0, 0.0]
     spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
     defaults = add_defaults(spec, p)
-    add_pad_meshes(spec, p)
-    names = FingerNames("f0", 3, pneumatic=p.pneumatic_fingers)
-    maker = PadMaker(spec, p, names, defaults)
+    drive = drive_for(p)
+    add_pad_meshes(spec, drive)
+    maker = PadMaker(spec, drive, drive.names(0), defaults)
     seg = spec.worldbody.add_body(name="f0_seg2", pos=[0.0, 0.0, 0.0])
-    if p.pneumatic_fingers:
-        from gripper.pneumatic.chamber import segment_vertices
-
-        pf = p.pneumatic
-        verts, kind, face, area = segment_vertices(pf, pf.pitch), "full", pf.height, pf.pitch * pf.width
-    else:
-        from gripper.model.geometry import element_vertices
-
-        g = p.finger
-        verts, kind, face = element_vertices(g, "middle"), "middle", g.height
-        area = (g.pitch - 2.0 * g.cut_half_width) * g.width
+    # a middle element of the finger: its body, its pad's kind and its grasping face's area
+    verts, kind, area = drive.element_vertices(2), drive.element_kind(2), drive.face_area(2)
+    face = drive.finger_height
     spec.add_mesh(name="element", uservert=verts.ravel().tolist())
     collision = seg.add_geom(defaults["collision"], name="f0_seg2_collision", type=mujoco.mjtGeom.mjGEOM_MESH,
                              meshname="element")

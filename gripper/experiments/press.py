@@ -19,6 +19,7 @@ import dataclasses
 import mujoco
 
 from gripper.core.params import GripperParams
+from gripper.drives import drive_for
 from gripper.model.builders import build_scene_spec
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement, add_object
@@ -57,7 +58,7 @@ def face_press(points: tuple[int, int, int], depth: float) -> dict:
     m = spec.compile()
     d = mujoco.MjData(m)
     gid = m.geom("probe_geom").id
-    probe = ObjectProbe(m, obj, p.layout.n_fingers)
+    probe = ObjectProbe(m, obj, p.layout.n_fingers, drive_for(p))
     h = m.opt.timestep
     travel = 0.002 + depth
     n_in, n_hold = int(travel / PRESS_SPEED / h), int(PRESS_HOLD_S / h)

@@ -76,14 +76,14 @@ class GraspProtocol(Validated):
         "8 of 10 films past yield, 0 at 3 mm; docs/contact.md)")
     close_speed: float = param(0.04, "m/s", ge=1e-3, le=1, source="cable contraction speed (spool surface)")
     policy: str = param("controller", "-", choices=POLICIES,
-                        source="controller: the object-agnostic grip (gripper.experiments.controller); "
+                        source="controller: the object-agnostic grip (gripper.drives.cable.controller); "
                         "per_object: each object's own closing command, for comparison")
     grip_tension: float = param(GRIP_TENSION, "N", gt=0, le=54,
                                 source="controller's grip set-point: cable tension per finger "
                                 "(docs/controller.md; at most the servo's stall tension, 54 N)")
     grip_pressure: float = param(250e3, "Pa", gt=0, le=1e6,
                                  source="pneumatic gripper's grip set-point: chamber pressure, the calibration's "
-                                 "highest (paper 001 §2.3: 0-250 kPa; gripper.experiments.pressure_controller)")
+                                 "highest (paper 001 §2.3: 0-250 kPa; gripper.drives.pneumatic.controller)")
     pressure_rate: float = param(250e3, "Pa/s", ge=1e3, le=1e8,
                                  source="pneumatic gripper: the set-point's ramp, full pressure in 1 s (assumed: "
                                  "about the cable fingers' closing time)")
@@ -109,11 +109,6 @@ class GraspProtocol(Validated):
 
     def to_dict(self) -> dict[str, Any]:
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
-
-    def fingertip_clearance_for(self, pneumatic: bool) -> float:
-        """The fingertip grasp's clearance above the support for the cable or the pneumatic
-        gripper [m]."""
-        return self.pneumatic_fingertip_clearance if pneumatic else self.fingertip_clearance
 
 
 @dataclass(frozen=True)

@@ -8,6 +8,7 @@ import mujoco
 import numpy as np
 
 from gripper.core.params import GripperParams
+from gripper.drives import drive_for
 from gripper.experiments.protocol import PULL_MAX, PULL_RATE, PULL_SLIP, GraspProtocol
 from gripper.experiments.trial import run_protocol
 from gripper.objects.grasp_object import GraspObject
@@ -41,7 +42,7 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     m = build_grasp_scene(p, obj, (placement or Placement()).validate())
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
-    probe = ObjectProbe(m, obj, p.layout.n_fingers)
+    probe = ObjectProbe(m, obj, p.layout.n_fingers, drive_for(p))
     rec = PeakRecorder(probe)
     short = proto.replace(hold_s=0.3, shake_s=0.0)
     grasp = run_protocol(m, d, p, obj, short, probe, rec)

@@ -74,9 +74,9 @@ class TrialRecord(Mapping[str, Any]):
             controller, the largest goal position when the close phase ended.
         policy: ``controller`` or ``per_object``.
         servo_at_grasp, servo_at_hold_end: the servos' sensed state at the end of the close
-            phase and of the hold (:class:`gripper.servo.sensing.ServoReading`: ``position_rad``,
+            phase and of the hold (:class:`gripper.drives.cable.sensing.ServoReading`: ``position_rad``,
             ``current_A``, ``load``, ``tension_N``, one entry per finger); for the pneumatic
-            gripper the regulators' (:class:`gripper.pneumatic.sensing.PressureReading`:
+            gripper the regulators' (:class:`gripper.drives.pneumatic.sensing.PressureReading`:
             ``pressure_Pa``).
         grasp: ``envelope`` or ``fingertip`` (gripper.experiments.approach).
         palm_xy_m: where the approach put the palm over the table [m].

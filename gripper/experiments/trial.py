@@ -3,7 +3,7 @@
 Within a chunk of ``protocol.chunk_steps`` steps every command is a function of time, so each
 phase is stepped with ``mujoco.rollout`` chunk by chunk on the trial's own ``MjData``; between
 chunks the runner checks stability (MuJoCo warnings, non-finite state), slip and damage, and the
-grasp controller (:mod:`gripper.experiments.controller`) reads the servos and sets the next
+drive's grip controller (:meth:`gripper.drives.drive.Drive.grip_controller`) reads the drive and sets the next
 chunk's goals, so a chunk is also its control period. Cable tension is the tendon-limit force
 sensor, recorded at every step by the rollout; per-finger contact force is the sum of the
 normal forces of all contacts between that finger's elements and the object, read from the
@@ -29,17 +29,14 @@ import numpy as np
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
-from gripper.core.units import DEG
+from gripper.drives import Drive, drive_for
+from gripper.drives.cable.sensing import ServoSensing
 from gripper.experiments.approach import ApproachPlan, fingertip_palm_z, plan_approach
-from gripper.experiments.controller import GripController, check_set_point
-from gripper.experiments.pressure_controller import PressureController
 from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
 from gripper.experiments.record import TrialRecord
 from gripper.objects.grasp_object import GraspObject
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement
-from gripper.pneumatic.sensing import PressureSensor
-from gripper.servo.sensing import ServoSensing, ServoSensor
 from gripper.sim.damage import damage_measure
 from gripper.sim.depth import DepthCamera, NoObjectSeen, estimate_object, palm_depth_points
 from gripper.sim.probes import ObjectProbe, PeakRecorder
@@ -63,7 +60,7 @@ def sample_placement(obj: GraspObject, noise: TrialNoise, seed: int, index: int)
 def grasp_height(p: GripperParams, obj: GraspObject, proto: GraspProtocol) -> float:
     """Palm-face height above the floor at which the fingers close [m], by the catalogue rule
     (``protocol.approach = "catalogue"``: from the object's size)."""
-    return max(p.finger_length + proto.tip_clearance, obj.height + proto.palm_clearance)
+    return max(drive_for(p).finger_length + proto.tip_clearance, obj.height + proto.palm_clearance)
 
 
 def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
@@ -73,7 +70,8 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
               frame_sink=None) -> TrialRecord:
     """Run one scripted grasp trial; return its record (:class:`TrialRecord`, SI units).
 
-    ``placement`` overrides the sampled perturbation; ``sensing`` the servos' sensor model and
+    ``placement`` overrides the sampled perturbation; ``sensing`` the drive's sensor model (the
+    cable drive's :class:`ServoSensing`; a drive ignores another's) and
     ``camera`` the palm camera's (their noise is drawn from generators seeded by seed, index and
     object name). The grasp itself reads no field of the object: under the default
     ``protocol.approach = "sensed"`` the palm camera finds it, and a table where the camera sees
@@ -103,32 +101,26 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
     m = build_grasp_scene(p, obj, place)
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
-    probe = ObjectProbe(m, obj, p.layout.n_fingers)
+    drive = drive_for(p)
+    probe = ObjectProbe(m, obj, p.layout.n_fingers, drive)
     rec = PeakRecorder(probe)
     if frame_sink is not None:
         frame_sink.start(m, probe)
         rec.frame_sink = frame_sink
     try:
-        sensor = drive_sensor(m, p, sensing, np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 1]))
+        sensor = drive.sensor(m, np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 1]), sensing)
         eye = Eye(camera, np.random.default_rng([seed, index, zlib.crc32(obj.name.encode()), 2]))
         outcome = {"status": "ok", **run_protocol(m, d, p, obj, proto, probe, rec, sensor, eye)}
     except NoObjectSeen as e:
         outcome = {"status": "no_object", "success": None, "failed_phase": None, "error": str(e)}
     except SimulationUnstable as e:
         outcome = {"status": "error", "success": None, "failed_phase": None, "error": str(e)}
-    if p.pneumatic_fingers:
-        outcome.update(actuation="pneumatic", peak_pressure_Pa=rec.peak_pressure)
+    outcome.update(drive.trial_outcome(rec.peak_effort))
     return TrialRecord(
         **head, **outcome,
         peak_total_force_N=rec.peak_total, peak_finger_force_N=rec.peak_finger.tolist(),
-        peak_cable_tension_N=rec.peak_tension, warnings=int(sum(w.number for w in d.warning)),
+        warnings=int(sum(w.number for w in d.warning)),
         sim_time_s=float(d.time), wall_time_s=time.perf_counter() - wall0)
-
-
-def drive_sensor(m, p: GripperParams, sensing: ServoSensing, rng: np.random.Generator
-                 ) -> ServoSensor | PressureSensor:
-    """What the fingers' drives report: the servos (``sensing``) or the pressure regulators."""
-    return PressureSensor(m, p, rng=rng) if p.pneumatic_fingers else ServoSensor(m, p, sensing, rng)
 
 
 class Eye:
@@ -142,18 +134,17 @@ class Eye:
         return estimate_object(palm_depth_points(m, d, palm, self.camera, self.rng), self.camera)
 
 
-def run_protocol(m, d, p, obj, proto, probe, rec, sensor: ServoSensor | PressureSensor | None = None,
-                 eye: Eye | None = None) -> dict:
-    """Run the grasp protocol on a built scene; ``sensor`` reads the servos (default: a
-    :class:`ServoSensor` with the default sensing and a fixed generator), ``eye`` is the palm
-    camera (default: :class:`DepthCamera` with a fixed generator).
+def run_protocol(m, d, p, obj, proto, probe, rec, sensor=None, eye: Eye | None = None) -> dict:
+    """Run the grasp protocol on a built scene; ``sensor`` reads the drive (default: the drive's
+    sensor with its default sensing and a fixed generator), ``eye`` is the palm camera (default:
+    :class:`DepthCamera` with a fixed generator).
 
     Raises:
         NoObjectSeen: the sensed approach saw nothing on the table.
     """
     stepper = ChunkStepper(m, d)
     if sensor is None:
-        sensor = drive_sensor(m, p, ServoSensing(), np.random.default_rng(0))
+        sensor = drive_for(p).sensor(m, np.random.default_rng(0))
     if eye is None:
         eye = Eye(DepthCamera(), np.random.default_rng(0))
     try:
@@ -164,21 +155,14 @@ def run_protocol(m, d, p, obj, proto, probe, rec, sensor: ServoSensor | Pressure
 
 def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
     m, d = stepper.m, stepper.d
+    drive: Drive = probe.drive
     ch = proto.chunk_steps
     home = p.lift.home_height
     travel = float(m.actuator_ctrlrange[probe.servo[0], 1])
-    close_rate = proto.close_speed / p.servo.spool_radius  # rad/s of spool
-    grip: GripController | PressureController | None = None
-    check_set_point(proto, p)
-    if p.pneumatic_fingers:  # the drive is the regulator: a pressure set-point, ramped and held
-        close_rate = proto.pressure_rate
-        grip = PressureController(m, probe.servo, sensor, grip_pressure=proto.grip_pressure, rate=close_rate)
-        servo_cmd = grip.goals
-    elif proto.policy == "controller":
-        kp, _ = p.servo.datasheet.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
-                                           damping_ratio=p.servo.damping_ratio)
-        grip = GripController(m, probe.servo, sensor, grip_tension=proto.grip_tension, close_rate=close_rate,
-                              spool_radius=p.servo.spool_radius, kp=kp)
+    close_rate = drive.open_loop_rate(proto)  # per-object ramp [command unit/s]
+    drive.check_set_point(proto)
+    grip = drive.grip_controller(m, sensor, proto)  # None: the per-object ramp
+    if grip is not None:
         servo_cmd = grip.goals
     close_cmd = min(obj.close_command * proto.close_command_scale, travel)
     lift_y = m.actuator("lift_y").id
@@ -204,7 +188,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
         plan = plan_approach(estimate, p, proto)
     elif proto.grasp == "fingertip":  # the catalogue's size, the fingertip grasp (for ablations)
         plan = ApproachPlan(grasp="fingertip", x=0.0, y=0.0,
-                            palm_z=p.finger.length + proto.fingertip_clearance_for(p.pneumatic_fingers),
+                            palm_z=drive.finger_length + drive.fingertip_clearance(proto),
                             support_z=0.0, floor_z=obj.height + proto.palm_clearance)
     else:
         plan = ApproachPlan(grasp="envelope", x=0.0, y=0.0, palm_z=grasp_height(p, obj, proto), support_z=0.0)
@@ -309,18 +293,11 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
         "success": failed is None, "failed_phase": failed, "lift_height_m": lift_height, "slip_m": slip,
         "max_slip_m": max_slip[0], "damaged": damaged, "damage_measure": damage,
         "damage_limit": obj.damage_limit,
-        "close_command_rad": (close_cmd if grip is None else None if p.pneumatic_fingers
-                              else float(grip.goal.max())),
+        "close_command_rad": close_cmd if grip is None else drive.close_command(grip),
         "policy": proto.policy, "servo_at_grasp": sensed["grasp"], "servo_at_hold_end": sensed["hold"],
         "grasp": plan.grasp, "palm_xy_m": [xc, yc],
         "depth_estimate": estimate.to_dict() if estimate is not None else None,
     }
-    if isinstance(grip, PressureController):
-        out.update(grip_pressure_Pa=grip.grip_pressure,
-                   grasp_time_s=None if math.isnan(grip.grip_time) else grip.grip_time)
-    elif grip is not None:
-        out.update(grip_tension_N=grip.grip_tension,
-                   contact_time_s=float(np.nanmin(grip.contact_time)) if np.isfinite(grip.contact_time).any()
-                   else None,
-                   grasp_time_s=None if math.isnan(grip.grip_time) else grip.grip_time)
+    if grip is not None:
+        out.update(drive.controller_outcome(grip))
     return out

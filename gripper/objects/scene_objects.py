@@ -69,7 +69,7 @@ def _yaw_quat(yaw: float) -> list[float]:
     return [math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw)]
 
 
-# A rigid part's contact when the fingers carry compliant pads (gripper.model.pads): near-rigid,
+# A rigid part's contact when the fingers carry compliant pads (gripper.parts.pads): near-rigid,
 # so the pads' springs, in N/m, carry the indentation. A contact's static stiffness is
 # 1 / ((1 - d) A timeconst^2), A its inverse effective mass in the integrator's metric: with
 # d = 0.999 and 4 ms (twice the trials' step, MuJoCo's stability floor) it is 2.7e5 N/m or more

@@ -26,7 +26,7 @@ import numpy as np
 from gripper.core.fields import Validated
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
-from gripper.model.builders import GUIDE_DEPTH
+from gripper.drives.cable.finger import GUIDE_DEPTH
 from gripper.references.finger_mesh import FingerMesh, MeshResolution, finger_mesh
 from gripper.sim.stability import SimulationUnstable, check_stable
 

@@ -22,7 +22,7 @@ import numpy as np
 
 from gripper.core.fields import Validated
 from gripper.core.params import FingerGeometry
-from gripper.model.geometry import element_kind
+from gripper.drives.cable.geometry import element_kind
 
 
 @dataclass(frozen=True)

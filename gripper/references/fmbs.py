@@ -96,7 +96,7 @@ ZONE_FRACTION = 0.5 * (1.0 - math.cos(math.pi / 4.0))  # = 0.146, see rigid_zone
 def _element_u(p: GripperParams, mesh, e: int) -> tuple[np.ndarray, np.ndarray]:
     """Nodes of element ``e`` and their position along it, 0 at its proximal and 1 at its
     distal face, measured along the mesh's lines (which lean with the cut faces)."""
-    from gripper.model.geometry import element_kind
+    from gripper.drives.cable.geometry import element_kind
 
     g = p.finger
     nodes = mesh.nodes_of_element[e]

@@ -145,8 +145,12 @@ def holding_force_plot(results: list[dict], out: str | Path) -> None:
     out = check_png_path(out, "--plot")
     fig, ax = plt.subplots(figsize=(5.5, 3.8))
     names = list(dict.fromkeys(r["object"] for r in results))
-    pneumatic = any(r.get("grip_pressure_Pa") is not None for r in results)
-    key, scale = ("grip_pressure_Pa", 1e-3) if pneumatic else ("grip_tension_N", 1.0)
+    # the set-point of whichever drive ran (its record key; the drive's label and display unit)
+    from gripper.drives.drive import drive_class, registered_drives
+
+    drive = next((drive_class(k) for k in registered_drives()
+                  if any(r.get(drive_class(k).set_point_record) is not None for r in results)), drive_class("cable"))
+    key, scale = drive.set_point_record, drive.effort_display_scale
     for k, name in enumerate(names):
         rs = sorted((r for r in results if r["object"] == name and r.get(key) is not None), key=lambda r: r[key])
         if not rs:
@@ -156,8 +160,7 @@ def holding_force_plot(results: list[dict], out: str | Path) -> None:
         ax.plot(x, y, "-", color=f"C{k}", label=name)
         for xi, yi, r in zip(x, y, rs, strict=True):
             ax.plot(xi, yi, "o", color=f"C{k}", mfc="none" if r["held_at_max"] else f"C{k}")
-    ax.set_xlabel("grip set-point: chamber pressure [kPa]" if pneumatic
-                  else "grip set-point: cable tension per finger [N]")
+    ax.set_xlabel(f"grip set-point per finger: {drive.effort_label}")
     ax.set_ylabel("holding force (pull to 5 mm slip) [N]")
     ax.set_title("Pull-out under the grasp controller")
     ax.set_ylim(bottom=0)

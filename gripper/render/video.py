@@ -41,10 +41,11 @@ class FrameRecorder:
 
     def start(self, model, probe) -> None:
         self.model = model
-        # the drive's reading per finger: cable tension [N], or chamber pressure [kPa] (pneumatic)
-        self.pneumatic = bool(getattr(probe, "pneumatic", False))
-        self.tension_adr = probe.moment_adr if self.pneumatic else probe.tension_adr
-        self.scale = 1e-3 / probe.moment_gain if self.pneumatic else 1.0
+        # the drive's effort per finger (cable tension [N], chamber pressure [kPa], ...) in its display unit
+        drive = probe.drive
+        self.label, self.format = drive.effort_label, drive.effort_format
+        self.tension_adr = probe.effort_adr
+        self.scale = probe.effort_scale * drive.effort_display_scale
         self._next = 0.0
 
     def add(self, phase: str, states: np.ndarray, sensordata: np.ndarray) -> None:
@@ -132,9 +133,8 @@ def render_frames(rec: FrameRecorder, *, width: int = 640, height: int = 480, ca
             mujoco.mj_forward(m, d)
             img = renderer.render(d)
             if overlay:
-                tens = " ".join(f"{t:4.1f}" if not rec.pneumatic else f"{t:4.0f}" for t in rec.tensions[i])
-                label = "chamber pressure [kPa]" if rec.pneumatic else "cable tension [N]"
-                img = overlay_lines(img, [f"{rec.phases[i]:<8} t = {d.time:5.2f} s", f"{label}: {tens}"])
+                tens = " ".join(format(t, rec.format) for t in rec.tensions[i])
+                img = overlay_lines(img, [f"{rec.phases[i]:<8} t = {d.time:5.2f} s", f"{rec.label}: {tens}"])
             frames[i] = img
             progress.update(i + 1)
     finally:

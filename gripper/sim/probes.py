@@ -1,5 +1,6 @@
 """Probes: indices into a grasp scene for what trials read (object pose, finger contact
-forces, cable tensions, flex edge strain), and the peaks a trial records."""
+forces, the drive's effort: cable tension, chamber pressure, ...; flex edge strain), and the
+peaks a trial records."""
 
 from __future__ import annotations
 
@@ -8,9 +9,10 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from gripper.model.names import drive_name, finger_name
+from gripper.drives import Drive
 from gripper.objects.grasp_object import GraspObject
 from gripper.objects.scene_objects import CONTENTS_BODY, OBJECT_BODY
+from gripper.parts.names import finger_name
 
 # Objects whose damage measure is the peak edge strain of their flex (burst, tear).
 STRAIN_DAMAGE_KINDS = ("balloon", "bag", "zipper_bag")
@@ -34,12 +36,12 @@ class ObjectProbe:
     model: mujoco.MjModel
     obj: GraspObject
     n_fingers: int
+    drive: Drive
 
     def __post_init__(self):
         m = self.model
-        # each finger's drive actuator: the servo (cable) or the chamber's regulator (pneumatic)
-        self.pneumatic = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, drive_name(0, True)) >= 0
-        self.servo = np.array([m.actuator(drive_name(k, self.pneumatic)).id for k in range(self.n_fingers)])
+        # each finger's drive actuator (the servo, the chamber's regulator, ...)
+        self.servo = self.drive.actuator_ids(m)
         self.lift_x = m.actuator("lift_x").id
         self.lift_z = m.actuator("lift_z").id
         self.palm = m.body("palm").id
@@ -55,14 +57,8 @@ class ObjectProbe:
             name = m.body(m.geom_bodyid[g]).name
             if name == OBJECT_BODY or name.startswith(CONTENTS_BODY):
                 self.object_geom[g] = True
-        if self.pneumatic:  # no cable; the chamber's moment sensor over its gain is the pressure
-            self.tension_adr = np.zeros(0, dtype=int)
-            self.moment_adr = np.array([m.sensor_adr[m.sensor(f"{drive_name(k, True)}_moment").id]
-                                        for k in range(self.n_fingers)])
-            self.moment_gain = m.actuator_gainprm[self.servo, 0].copy()
-        else:
-            self.tension_adr = np.array([m.sensor_adr[m.sensor(f"{finger_name(k)}_cable_tension").id]
-                                         for k in range(self.n_fingers)])
+        # each finger's true effort (cable tension [N], chamber pressure [Pa], ...): sensor x factor
+        self.effort_adr, self.effort_scale = self.drive.effort_sensors(m)
         self.flex = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_FLEX, OBJECT_BODY) if self.obj.is_flex else -1
         if self.flex >= 0:
             a, n = m.flex_vertadr[self.flex], m.flex_vertnum[self.flex]
@@ -167,8 +163,7 @@ class PeakRecorder:
         self.probe = probe
         self.peak_total = 0.0
         self.peak_finger = np.zeros(probe.n_fingers)
-        self.peak_tension = 0.0
-        self.peak_pressure = 0.0
+        self.peak_effort = 0.0
         self.peak_strain = 0.0
         self.frame_sink = None  # optional: receives (phase, states, sensordata) of every chunk
 
@@ -179,11 +174,8 @@ class PeakRecorder:
         per_finger = self.probe.finger_forces(d)
         self.peak_finger = np.maximum(self.peak_finger, per_finger)
         self.peak_total = max(self.peak_total, float(per_finger.sum()))
-        if self.probe.pneumatic:
-            pressure = sensordata[:, self.probe.moment_adr] / self.probe.moment_gain
-            self.peak_pressure = max(self.peak_pressure, float(pressure.max()))
-        else:
-            self.peak_tension = max(self.peak_tension, float(sensordata[:, self.probe.tension_adr].max()))
+        effort = sensordata[:, self.probe.effort_adr] * self.probe.effort_scale
+        self.peak_effort = max(self.peak_effort, float(effort.max()))
         if self.probe.obj.kind not in STRAIN_DAMAGE_KINDS:
             return
         if states is not None and self.probe.q_adr is not None:

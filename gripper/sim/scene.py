@@ -9,10 +9,11 @@ import mujoco
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
+from gripper.drives import drive_for
 from gripper.model.builders import build_gripper_spec, build_scene_spec
-from gripper.model.closure import MIN_STEPS, RIGID_STOP_SOLIMP, tune_closure_limits
 from gripper.objects.grasp_object import GraspObject
 from gripper.objects.scene_objects import Placement, add_object
+from gripper.parts.defaults import MIN_STEPS, RIGID_STOP_SOLIMP
 from gripper.sim.canonical import apply_canonical_constants
 
 # The closed cuts' tuned limits, per design (parameter hash): matching them simulates 2,500
@@ -28,13 +29,13 @@ def trial_params(p: GripperParams, timestep: float = TRIAL_TIMESTEP) -> GripperP
 
 
 def _as_trials_run(spec: mujoco.MjSpec, p: GripperParams, key: str) -> mujoco.MjSpec:
-    """``spec`` with the ``discrete`` integrator (see objects) and the closed cuts matched to
-    their design under that integrator (:mod:`gripper.model.closure`; the match is computed
-    once per design and process, then reused)."""
+    """``spec`` with the ``discrete`` integrator (see objects) and what the drive matches to that
+    integrator (the cable finger's closed cuts: :mod:`gripper.drives.cable.closure`; the match is
+    computed once per design and process, then reused)."""
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
     hold_step_floors(spec, p)
     if key not in _LIMITS:
-        tune_closure_limits(spec, p, spec.compile())
+        drive_for(p).tune_for_trials(spec)
         if len(_LIMITS) >= _LIMITS_KEPT:
             _LIMITS.pop(next(iter(_LIMITS)))
         _LIMITS[key] = [(j.name, list(j.solref_limit), list(j.solimp_limit)) for j in spec.joints]

@@ -26,6 +26,7 @@ from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import read_user_data
+from gripper.drives import drive_for
 from gripper.experiments.protocol import GRIP_TENSION, GraspProtocol, TrialNoise
 from gripper.objects.grasp_object import GraspObject
 
@@ -72,13 +73,11 @@ class Envelope:
             raise fail("trials", f"must be an integer in [1, 1000], got {self.trials!r}")
         if isinstance(self.seed, bool) or not isinstance(self.seed, int):
             raise fail("seed", f"must be an integer, got {self.seed!r}")
-        from gripper.experiments.controller import check_set_point
-
+        drive = drive_for(self.params)
         try:
-            check_set_point(self.protocol(), self.params)
+            drive.check_set_point(self.protocol())
         except ValueError as e:
-            key = "grip_pressure" if self.params.pneumatic_fingers else "grip_tension"
-            raise fail(key, str(e).split(": ", 1)[-1]) from None
+            raise fail(drive.set_point_field, str(e).split(": ", 1)[-1]) from None
         return self
 
     def protocol(self) -> GraspProtocol:

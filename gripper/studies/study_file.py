@@ -24,13 +24,11 @@ from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import read_user_text
+from gripper.drives import drive_class
 from gripper.references.pneumatic_params import PneumaticActuator
 
 DESIGNS = ("one_at_a_time", "factorial", "latin_hypercube")
 MODELS = ("gripper", "actuator")  # the cable gripper (GripperParams) or paper 001's actuator
-# Responses that drive the cable finger's servo (gripper.experiments.design_responses): not for
-# the pneumatic gripper, which has no servo
-CABLE_ONLY_RESPONSES = ("bending", "tension_for_angle", "blocked_force")
 RESPONSES: dict[str, dict[str, type]] = {
     "bending": {"r_max": float, "duration": float},
     "tension_for_angle": {"angle_deg": float},
@@ -332,11 +330,13 @@ def load_study(path: str | Path) -> Study:
     responses = data.get("responses", {})
     if not responses:
         raise err("responses", f"give at least one response; allowed: {', '.join(MODEL_RESPONSES[model])}")
-    pneumatic = isinstance(base, GripperParams) and (base.pneumatic_fingers or "actuation.kind" in vary)
+    kinds = ({base.actuation.kind, *vary.get("actuation.kind", ())} if isinstance(base, GripperParams)
+             else set())
     for name, opts in responses.items():
-        if pneumatic and name in CABLE_ONLY_RESPONSES:
-            raise err("responses." + name, "drives the cable finger's servo; a study of the pneumatic gripper "
-                      "measures grasp only")
+        lacking = sorted(k for k in kinds if name not in drive_class(k).responses)
+        if lacking and name in MODEL_RESPONSES[model]:
+            raise err("responses." + name, f"the {', '.join(lacking)} gripper's drive has no such response; "
+                      f"it measures {', '.join(drive_class(lacking[0]).responses)}")
         if name not in MODEL_RESPONSES[model]:
             raise err("responses." + name, f"unknown response for a {model} study; allowed: "
                                            f"{', '.join(MODEL_RESPONSES[model])}")

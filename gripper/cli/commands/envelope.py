@@ -17,6 +17,7 @@ from gripper.cli.options import (
 )
 from gripper.core.atomic import check_output_dir
 from gripper.core.params import ACTUATIONS, GripperParams
+from gripper.drives import drive_for
 from gripper.experiments.protocol import (
     GraspProtocol,
 )
@@ -61,8 +62,8 @@ def run(args) -> int:
     check_runner(args)
     summary = run_envelope(env, args.out, workers=args.workers, scheduler=args.scheduler,
                            progress=not args.no_progress)
-    grip = (f"{summary['grip_pressure_Pa'] / 1e3:g} kPa" if env.params.pneumatic_fingers
-            else f"{summary['grip_tension_N']:g} N")
+    drive = drive_for(env.params)
+    grip = drive.format_set_point(summary[drive.set_point_record])
     print(f"capability envelope at a grip of {grip} "
           f"(held: at least {summary['held_fraction']:.0%} of {env.trials} trials)")
     for shape, s in summary["shapes"].items():

@@ -42,7 +42,7 @@ def add(sub) -> None:
 
 
 def run(args) -> int:
-    from gripper.experiments.controller import check_set_point
+    from gripper.drives import drive_for
     from gripper.experiments.protocol import GraspProtocol
     from gripper.experiments.pullout import run_pullout
 
@@ -50,7 +50,8 @@ def run(args) -> int:
     policy = args.policy
     base = GraspProtocol(policy=policy)
     params = design(args)
-    pneumatic = params.pneumatic_fingers
+    drive = drive_for(params)
+    pneumatic = params.actuation.kind == "pneumatic"  # which set-point option applies
     if pneumatic and args.grip_tension is not None:
         raise ValueError("--grip-tension: the cable gripper's set-point; the pneumatic gripper takes --grip-pressure")
     if not pneumatic and args.grip_pressure is not None:
@@ -67,7 +68,7 @@ def run(args) -> int:
                              "object's own command")
         protos = [base]
     for proto in protos:
-        check_set_point(proto.validate(), params)
+        drive.check_set_point(proto.validate())
     if args.plot:
         check_output_file(args.plot, "--plot", (".png",))
     results = []
@@ -77,10 +78,8 @@ def run(args) -> int:
             results.append(res)
             bound = ">=" if res["held_at_max"] else ""
             note = "" if res.get("lifted", True) else " (not lifted: holds nothing)"
-            if pneumatic:
-                grip = f"grip {res['grip_pressure_Pa'] / 1e3:g} kPa: "
-            else:
-                grip = f"grip {res['grip_tension_N']:g} N: " if res["grip_tension_N"] is not None else "per_object: "
+            set_point = res.get(drive.set_point_record)
+            grip = f"grip {drive.format_set_point(set_point)}: " if set_point is not None else "per_object: "
             print(f"{name:<10} {grip}holding force {bound}{res['holding_force_N']:.2f} N "
                   f"(pull ramp {res['rate_N_per_s']:g} N/s until {res['slip_m'] * 1e3:g} mm slip){note}")
     if args.plot:

@@ -18,7 +18,7 @@ def add(sub) -> None:
 
 
 def run(args) -> int:
-    from gripper.servo.datasheet_check import measure_servo
+    from gripper.drives.cable.datasheet_check import measure_servo
 
     m = measure_servo(design(args, cable_only="gripper servo"))
     print(f"servo preset {m.datasheet.name}: {m.datasheet.description}")

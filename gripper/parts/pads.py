@@ -25,7 +25,8 @@ springs on their light bodies are stable at the trials' 2 ms. Derivation and che
 
 Example:
     >>> from gripper.core.params import GripperParams
-    >>> law = hertz_law(GripperParams())
+    >>> from gripper.drives import drive_for
+    >>> law = hertz_law(drive_for(GripperParams()))
     >>> round(float(law.indentation(2.0)) * 1e3, 2)      # mm under 2 N
     0.95
 """
@@ -38,10 +39,8 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from gripper.core.params import GripperParams
-from gripper.core.rounding import rounded_prism, rounded_sweep
-from gripper.model.names import FingerNames
 from gripper.objects.scene_objects import RIGID_CONTACT_SOLIMP, RIGID_CONTACT_SOLREF
+from gripper.parts.names import FingerNames
 
 # The spring's knots: Hertz's force at each, a factor KNOT_FORCE_RATIO apart from KNOT_FORCE_MIN.
 # A chord of delta^(3/2) over a force ratio of 3 (an indentation ratio of 2.08) lies at most 5.1 %
@@ -72,24 +71,10 @@ class HertzLaw:
         return (f / (4.0 / 3.0 * self.effective_modulus * math.sqrt(self.radius))) ** (2.0 / 3.0)
 
 
-def hertz_law(p: GripperParams) -> HertzLaw:
-    """The pad's law for ``p``'s fingers: paper 000 Table 2's E and nu (cable), or paper 001's
-    Yeoh fit at small strain, E = 6 C10 with nu = 0.5 (pneumatic)."""
-    if p.pneumatic_fingers:
-        e_star = 6.0 * p.material.yeoh_c10 / (1.0 - 0.5 ** 2)
-    else:
-        e_star = p.material.youngs_modulus / (1.0 - p.material.poisson_ratio ** 2)
-    return HertzLaw(effective_modulus=e_star, radius=p.contact.pad_radius)
-
-
-def pad_depth(p: GripperParams) -> float:
-    """How far a pad can be pressed in before it bottoms out [m]: the silicone wall between the
-    grasping face and the cable hole (cable), or between the face and the fabric's mid-plane
-    (pneumatic: the neutral layer's height)."""
-    if p.pneumatic_fingers:
-        return p.pneumatic.neutral_height
-    g = p.finger
-    return g.height - g.hole_height - 0.5 * g.hole_diameter
+def hertz_law(drive) -> HertzLaw:
+    """The pad's law for a drive's fingers (:class:`gripper.drives.drive.Drive`: its
+    ``contact_modulus``) and the design's ``contact.pad_radius``."""
+    return HertzLaw(effective_modulus=drive.contact_modulus, radius=drive.params.contact.pad_radius)
 
 
 @dataclass(frozen=True)
@@ -106,14 +91,14 @@ class PadSpring:
         return np.sum(self.stiffness * np.maximum(d - self.knots, 0.0), axis=-1)
 
 
-def pad_spring(p: GripperParams) -> PadSpring:
+def pad_spring(drive) -> PadSpring:
     """The piecewise-linear interpolant of :func:`hertz_law` through the knots (see the module),
-    up to ``contact.fit_force_max`` or the force at which the pad bottoms out (:func:`pad_depth`:
-    11.2 N for the default cable finger, 7.1 N for the pneumatic one), whichever is lower; past
-    it, the last chord's slope."""
-    law = hertz_law(p)
+    up to ``contact.fit_force_max`` or the force at which the pad bottoms out (the drive's
+    ``pad_depth``: 11.2 N for the default cable finger, 7.1 N for the pneumatic one), whichever is
+    lower; past it, the last chord's slope."""
+    law = hertz_law(drive)
     # up to the fit's top force or where the pad bottoms out, whichever comes first
-    top = min(p.contact.fit_force_max, float(law.force(pad_depth(p))))
+    top = min(drive.params.contact.fit_force_max, float(law.force(drive.pad_depth)))
     n = max(1, math.ceil(math.log(top / KNOT_FORCE_MIN, KNOT_FORCE_RATIO)))
     forces = np.minimum(KNOT_FORCE_MIN * KNOT_FORCE_RATIO ** np.arange(n + 1), top)
     delta = np.concatenate([[0.0], law.indentation(forces)])
@@ -122,12 +107,12 @@ def pad_spring(p: GripperParams) -> PadSpring:
     return PadSpring(knots=delta[:-1], stiffness=np.diff(np.concatenate([[0.0], slopes])))
 
 
-def pad_damping(p: GripperParams, element_mass: float) -> float:
+def pad_damping(drive, element_mass: float) -> float:
     """The pad joint's damping [N·s/m]: ``contact.damping_ratio`` of critical for the spring's
     tangent stiffness at 1 N on the element's mass."""
-    law = hertz_law(p)
+    law = hertz_law(drive)
     k1 = 1.5 * 1.0 / float(law.indentation(1.0))
-    return 2.0 * p.contact.damping_ratio * math.sqrt(k1 * element_mass)
+    return 2.0 * drive.params.contact.damping_ratio * math.sqrt(k1 * element_mass)
 
 
 # Mesh vertices are kept to the hull's corners and rounded to a micrometre, so the model files
@@ -143,31 +128,6 @@ def hull_vertices(points: np.ndarray) -> np.ndarray:
     return grid[ConvexHull(grid).vertices]
 
 
-def cable_pad_vertices(p: GripperParams, profile: np.ndarray) -> np.ndarray:
-    """A cable element's collision surface: its prism, every edge rounded to ``contact.edge_radius``.
-
-    Raises:
-        ValueError: naming ``contact.edge_radius``, when the rounding does not fit the element.
-    """
-    try:
-        return hull_vertices(rounded_prism(profile, p.finger.width, p.contact.edge_radius))
-    except ValueError as err:
-        raise ValueError(f"contact.edge_radius: {p.contact.edge_radius!r} m does not fit this finger's "
-                         f"elements ({err})") from None
-
-
-def pneumatic_pad_vertices(p: GripperParams, section: np.ndarray, length: float) -> np.ndarray:
-    """A pneumatic segment's collision surface: its section swept over its length, every edge
-    (the section's corners and the end faces' rims) rounded to ``contact.pneumatic_edge_radius``
-    (the round back is already round). The fingertip grasp runs the tip's end face along the
-    table into the part, so its rim meets films first."""
-    try:
-        return hull_vertices(rounded_sweep(section, length, p.contact.pneumatic_edge_radius, round_ends=True))
-    except ValueError as err:
-        raise ValueError(f"contact.pneumatic_edge_radius: {p.contact.pneumatic_edge_radius!r} m does not fit "
-                         f"this finger's segments ({err})") from None
-
-
 def _convex_volume(vertices: np.ndarray) -> float:
     from scipy.spatial import ConvexHull
 
@@ -175,14 +135,14 @@ def _convex_volume(vertices: np.ndarray) -> float:
 
 
 class PadMaker:
-    """Puts each element of one finger on its pad; the finger builders call it once per element
-    (``gripper.model.builders.add_finger``, ``gripper.pneumatic.chamber.add_pneumatic_finger``).
-    The meshes ``pad_{kind}`` come from :func:`add_pad_meshes`."""
+    """Puts each element of one finger on its pad; a drive's finger builder calls it once per
+    element (:meth:`gripper.drives.drive.Drive.add_finger`). The meshes ``pad_{kind}`` come from
+    :func:`add_pad_meshes`."""
 
-    def __init__(self, spec: mujoco.MjSpec, p: GripperParams, names: FingerNames, defaults: dict):
-        self.spec, self.p, self.names, self.defaults = spec, p, names, defaults
-        self.spring = pad_spring(p)
-        self.depth = pad_depth(p)
+    def __init__(self, spec: mujoco.MjSpec, drive, names: FingerNames, defaults: dict):
+        self.spec, self.drive, self.p, self.names, self.defaults = spec, drive, drive.params, names, defaults
+        self.spring = pad_spring(drive)
+        self.depth = drive.pad_depth
 
     def __call__(self, seg: mujoco.MjsBody, j: int, kind: str, collision: mujoco.MjsGeom,
                  element_vertices: np.ndarray, face_area: float) -> mujoco.MjsBody:
@@ -208,7 +168,7 @@ class PadMaker:
         pad.add_joint(name=slide, type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[0, 0, -1],
                       limited=mujoco.mjtLimited.mjLIMITED_TRUE, range=[-PAD_EXTENSION, self.depth],
                       stiffness=[float(spring.stiffness[0]), 0, 0], springref=0.0,
-                      damping=[pad_damping(p, element_mass), 0, 0],
+                      damping=[pad_damping(self.drive, element_mass), 0, 0],
                       solref_limit=list(RIGID_CONTACT_SOLREF), solimp_limit=list(RIGID_CONTACT_SOLIMP))
         pad.add_geom(self.defaults["collision"], name=f"{prefix}_seg{j}_pad_collision",
                      type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"pad_{kind}", mass=pad_mass)
@@ -226,23 +186,11 @@ class PadMaker:
             self.spec.add_exclude(bodyname1=f"{prefix}_seg{j}_padbody", bodyname2=f"{prefix}_seg{j + 1}_padbody")
 
 
-def add_pad_meshes(spec: mujoco.MjSpec, p: GripperParams) -> None:
-    """The pads' rounded collision meshes, one per element kind (``pad_{kind}``)."""
-    if p.pneumatic_fingers:
-        from gripper.pneumatic.chamber import segment_section
-
-        section = segment_section(p.pneumatic)
-        for kind, length in (("half", 0.5 * p.pneumatic.pitch), ("full", p.pneumatic.pitch)):
-            spec.add_mesh(name=f"pad_{kind}",
-                          uservert=pneumatic_pad_vertices(p, section, length).ravel().tolist())
-        return
-    from gripper.model.geometry import element_kind, element_profile
-
-    for kind in sorted({element_kind(i, p.finger.n_segments) for i in range(p.finger.n_segments)}):
-        spec.add_mesh(name=f"pad_{kind}",
-                      uservert=cable_pad_vertices(p, element_profile(p.finger, kind)).ravel().tolist())
+def add_pad_meshes(spec: mujoco.MjSpec, drive) -> None:
+    """The pads' rounded collision meshes, one per element kind of the drive's finger (``pad_{kind}``)."""
+    for kind in drive.pad_kinds():
+        spec.add_mesh(name=f"pad_{kind}", uservert=drive.pad_vertices(kind).ravel().tolist())
 
 
 __all__ = ["KNOT_FORCE_MIN", "KNOT_FORCE_RATIO", "PAD_EXTENSION", "VERTEX_GRID", "HertzLaw", "PadMaker",
-           "PadSpring", "add_pad_meshes", "cable_pad_vertices", "hertz_law", "hull_vertices", "pad_damping",
-           "pad_depth", "pad_spring", "pneumatic_pad_vertices"]
+           "PadSpring", "add_pad_meshes", "hertz_law", "hull_vertices", "pad_damping", "pad_spring"]

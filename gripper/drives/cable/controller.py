@@ -23,7 +23,7 @@ rate. The controller needs knowledge of its own gripper only (the spool radius, 
 travel and gains), nothing of the object.
 
 Example:
-    >>> from gripper.experiments.controller import CONTACT_TENSION
+    >>> from gripper.drives.cable.controller import CONTACT_TENSION
     >>> CONTACT_TENSION
     1.0
 """
@@ -36,7 +36,7 @@ import mujoco
 import numpy as np
 
 from gripper.core.units import DEG
-from gripper.servo.sensing import ServoReading, ServoSensor
+from gripper.drives.cable.sensing import ServoReading, ServoSensor
 
 # Contact threshold on the spool tension [N]. Free closing of the calibrated default fingers
 # needs at most 0.42 N of cable tension up to 2.0 rad of spool (measured at the 2 rad/s close
@@ -123,22 +123,6 @@ class GripController:
         self.goal[:] = 0.0
         self.state[:] = HOLDING
         self.released = True
-
-
-def check_set_point(protocol, params) -> None:
-    """The one check of a protocol's set-point against a design (the benchmark, the envelope and
-    every trial call it): with the controller, :func:`check_grip_tension` against the design's
-    servo; a per-object policy has no set-point. The pneumatic gripper: the controller only, its
-    pressure set-point within the regulator's range."""
-    if params.pneumatic_fingers:
-        from gripper.experiments.pressure_controller import check_grip_pressure
-
-        if protocol.policy != "controller":
-            raise ValueError(f"protocol.policy: the pneumatic gripper closes with the controller only "
-                             f"(a pressure set-point), got {protocol.policy!r}")
-        check_grip_pressure(protocol.grip_pressure, params.pneumatic.command_max)
-    elif protocol.policy == "controller":
-        check_grip_tension(protocol.grip_tension, params.servo.max_cable_tension)
 
 
 def check_grip_tension(grip_tension: float, max_tension: float) -> None:

@@ -7,7 +7,7 @@ space and its drive voltage is clamped to the supply voltage, and the rotor iner
 through the gearbox is the actuator ``armature``.
 
 Example:
-    >>> from gripper.servo.datasheet import servo_datasheet
+    >>> from gripper.datasheets.servo import servo_datasheet
     >>> round(servo_datasheet("hobby_6v").stall_torque, 3)
     1.079
 """

@@ -1,10 +1,10 @@
 """The servo in the MJCF: a MuJoCo ``dcmotor`` on the reel's slide joint, from the servo's
-datasheet (:mod:`gripper.servo.datasheet`) and the design's spool (``GripperParams.servo``).
+datasheet (:mod:`gripper.datasheets.servo`) and the design's spool (``GripperParams.servo``).
 
 Example:
     >>> import mujoco
     >>> from gripper.core.params import GripperParams
-    >>> from gripper.servo.actuator import set_dcmotor
+    >>> from gripper.drives.cable.servo import set_dcmotor
     >>> spec = mujoco.MjSpec()
     >>> set_dcmotor(spec.default.actuator, GripperParams())
 """

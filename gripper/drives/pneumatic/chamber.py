@@ -1,6 +1,6 @@
 """The pneumatic finger in the MJCF: paper 001's actuator as a chain of rigid segments on hinges
 at its neutral layer, bent by its chamber pressure through a fixed tendon, the pressure fed by a
-proportional regulator (:mod:`gripper.pneumatic.regulator`).
+proportional regulator (:mod:`gripper.datasheets.regulator`).
 
 Structure (names ``f{k}_`` for finger k, as the cable finger's):
 
@@ -20,7 +20,7 @@ Structure (names ``f{k}_`` for finger k, as the cable finger's):
 - ``hinge{j}_stiffening``: a one-joint fixed tendon whose spring (``stiffening`` / pitch) acts only
   past the knee angle (``knee_curvature`` x pitch): a dead-band spring (MuJoCo's two-valued
   ``springlength``), the silicone and fibres stiffening as the actuator bends.
-- the model steps with MuJoCo's discrete integrator (``gripper.model.builders.set_options``): the
+- the model steps with MuJoCo's discrete integrator (``gripper.drives.pneumatic.drive.PneumaticDrive.configure``): the
   short end segments on stiff hinges diverged under explicit springs at 1 ms.
 - ``chamber``: a fixed tendon summing every hinge angle, driven by the actuator ``chamber``
   (``general``: its activation is the chamber pressure [Pa] behind the regulator's first-order
@@ -44,6 +44,7 @@ import mujoco
 import numpy as np
 
 from gripper.core.params import GripperParams, PneumaticFinger
+from gripper.parts.pads import VERTEX_GRID
 
 # Points on the half-disc of each segment's cross-section (its round back).
 BACK_POINTS = 13
@@ -56,9 +57,12 @@ HINGE_RANGE = (-math.radians(30.0), math.radians(80.0))
 def segment_vertices(pf: PneumaticFinger, length: float) -> np.ndarray:
     """Vertices of one segment's convex body in its frame [m]: the cross-section (y across, z from
     the back, the half-disc of radius width/2 centred at z = width/2, then straight sides down to
-    the grasping face at z = height) at x = 0 and x = ``length``."""
+    the grasping face at z = height) at x = 0 and x = ``length``, on the pads' micrometre grid
+    (:data:`gripper.parts.pads.VERTEX_GRID`), so the committed model file holds exactly the
+    numbers the trials compile."""
     section = segment_section(pf)
-    return np.vstack([np.column_stack([np.full(len(section), x), section]) for x in (0.0, length)])
+    points = np.vstack([np.column_stack([np.full(len(section), x), section]) for x in (0.0, length)])
+    return np.round(points / VERTEX_GRID) * VERTEX_GRID
 
 
 def segment_section(pf: PneumaticFinger) -> np.ndarray:
@@ -93,8 +97,8 @@ def add_pneumatic_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: Gripper
                          pos, quat, defaults: dict, pad=None) -> None:
     """One pneumatic finger under ``parent`` (``pos``/``quat``: the finger frame in ``parent``'s),
     its chamber tendon and actuator and their sensors; ``names``: its
-    :class:`gripper.model.names.FingerNames`; ``pad``: a callable that puts each segment's surface
-    on a compliant pad and returns the body its touch site goes on (``gripper.model.pads.PadMaker``;
+    :class:`gripper.parts.names.FingerNames`; ``pad``: a callable that puts each segment's surface
+    on a compliant pad and returns the body its touch site goes on (``gripper.parts.pads.PadMaker``;
     None: the segment's own geom collides)."""
     pf = p.pneumatic
     prefix = names.prefix
@@ -108,11 +112,13 @@ def add_pneumatic_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: Gripper
         kind = "full" if 0 < i < len(lengths) - 1 else "half"
         hinge = f"{prefix}_hinge{j}"
         if i == 0:  # the root: the clamp's compliance, lumped
-            seg.add_joint(defaults["hinge"], name=hinge, pos=[0, 0, pf.hinge_z], range=list(HINGE_RANGE),
+            seg.add_joint(defaults.get("root_hinge", defaults["hinge"]), name=hinge,
+                          pos=[0, 0, pf.hinge_z], range=list(HINGE_RANGE),
                           stiffness=[pf.root_stiffness, 0, 0], damping=[damping, 0, 0], springref=0.0)
         else:
             spec.add_exclude(bodyname1=body.name, bodyname2=seg.name)
-            seg.add_joint(defaults["hinge"], name=hinge, pos=[0, 0, pf.hinge_z], range=list(HINGE_RANGE),
+            seg.add_joint(defaults.get("segment_hinge", defaults["hinge"]), name=hinge,
+                          pos=[0, 0, pf.hinge_z], range=list(HINGE_RANGE),
                           stiffness=[pf.hinge_stiffness, 0, 0], damping=[damping, 0, 0], springref=0.0)
             stiff = spec.add_tendon(name=f"{hinge}_stiffening", stiffness=[pf.stiffening / pf.pitch, 0, 0],
                                     springlength=[-2.0 * math.pi, pf.knee_curvature * pf.pitch])
@@ -129,6 +135,21 @@ def add_pneumatic_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: Gripper
             seg.add_site(name=names.tip, pos=[seg_len, 0, pf.hinge_z], size=[0.001] * 3)
         body = seg
     add_chamber_drive(spec, p, names)
+
+
+def add_hinge_defaults(spec: mujoco.MjSpec, defaults: dict, p: GripperParams) -> None:
+    """The classes ``root_hinge`` and ``segment_hinge`` under ``hinge``: what the clamp's hinge and
+    every inner hinge have on every finger (position on the neutral layer, range, spring, damper),
+    stated once."""
+    pf = p.pneumatic
+    for name, stiffness in (("root_hinge", pf.root_stiffness), ("segment_hinge", pf.hinge_stiffness)):
+        cls = spec.add_default(name, defaults["hinge"])
+        cls.joint.pos = [0, 0, pf.hinge_z]
+        cls.joint.range = list(HINGE_RANGE)
+        cls.joint.stiffness = [stiffness, 0, 0]
+        cls.joint.damping = [hinge_damping(pf), 0, 0]
+        cls.joint.springref = 0.0
+        defaults[name] = cls
 
 
 def add_chamber_drive(spec: mujoco.MjSpec, p: GripperParams, names) -> None:
@@ -160,5 +181,6 @@ def add_chamber_drive(spec: mujoco.MjSpec, p: GripperParams, names) -> None:
         spec.add_sensor(name=pad, type=S.mjSENS_TOUCH, objname=pad, objtype=mujoco.mjtObj.mjOBJ_SITE)
 
 
-__all__ = ["HINGE_RANGE", "add_chamber_drive", "add_pneumatic_finger", "add_segment_meshes", "hinge_damping",
+__all__ = ["HINGE_RANGE", "add_chamber_drive", "add_hinge_defaults",
+           "add_pneumatic_finger", "add_segment_meshes", "hinge_damping",
            "segment_lengths", "segment_section", "segment_vertices"]

@@ -3,12 +3,12 @@ monitor output (an analog 1-5 V signal proportional to the pressure its own sens
 digitised by the host, with noise.
 
 The model's present pressure is the chamber actuator's activation (the regulator's filtered
-output; :mod:`gripper.pneumatic.chamber`), read through the actuator-force sensor (moment =
+output; :mod:`gripper.drives.pneumatic.chamber`), read through the actuator-force sensor (moment =
 pressure x moment per pascal). The reading adds Gaussian noise and rounds to the ADC's
 resolution, drawn from the trial's own generator (the same in every process).
 
 Example:
-    >>> from gripper.pneumatic.sensing import PressureSensing
+    >>> from gripper.drives.pneumatic.sensing import PressureSensing
     >>> round(PressureSensing().resolution)   # Pa: 500 kPa full scale over 4 V, 12 bits on 0-5 V
     153
 """
@@ -22,7 +22,7 @@ import numpy as np
 
 from gripper.core.fields import Validated, param
 from gripper.core.params import GripperParams
-from gripper.model.names import drive_name
+from gripper.parts.names import finger_name
 
 # Full scale of the monitor output: 1-5 V for 0-F.S. (SMC ITV series); the host's ADC: 12 bits on 0-5 V.
 ADC_VOLTS_PER_COUNT = 5.0 / 4096
@@ -63,8 +63,9 @@ class PressureSensor:
         self.cfg = (sensing or PressureSensing()).validate()
         self.rng = rng
         n = p.layout.n_fingers
-        self.moment_adr = np.array([m.sensor_adr[m.sensor(f"{drive_name(k, True)}_moment").id] for k in range(n)])
-        self.gain = np.array([m.actuator_gainprm[m.actuator(drive_name(k, True)).id, 0] for k in range(n)])
+        chambers = [f"{finger_name(k)}_chamber" for k in range(n)]
+        self.moment_adr = np.array([m.sensor_adr[m.sensor(f"{c}_moment").id] for c in chambers])
+        self.gain = np.array([m.actuator_gainprm[m.actuator(c).id, 0] for c in chambers])
 
     def true_pressure(self, row: np.ndarray) -> np.ndarray:
         """The regulators' output pressures in a sensor-data row (or rows) [Pa], noiseless."""

@@ -4,13 +4,13 @@ A pneumatic gripper is closed the way a lab closes one: every regulator's set-po
 protocol's rate (``GraspProtocol.pressure_rate``) to the grip pressure (``grip_pressure``) and is
 held there; the finger bends until the chamber's moment balances its springs and whatever it
 touches, so the squeeze on an object is set by the pressure, never by the object. The
-controller reads what the regulators report (:mod:`gripper.pneumatic.sensing`): the grasp is
+controller reads what the regulators report (:mod:`gripper.drives.pneumatic.sensing`): the grasp is
 made (``grip_time``) when every finger's present pressure is within ``SETTLED_FRACTION`` of the
 set-point. It knows its own gripper only (the regulators' range), nothing of the object. It has
 no contact sensing: ``contact_time`` stays unknown (NaN).
 
 Example:
-    >>> from gripper.experiments.pressure_controller import SETTLED_FRACTION
+    >>> from gripper.drives.pneumatic.controller import SETTLED_FRACTION
     >>> SETTLED_FRACTION
     0.98
 """
@@ -22,7 +22,7 @@ import math
 import mujoco
 import numpy as np
 
-from gripper.pneumatic.sensing import PressureReading, PressureSensor
+from gripper.drives.pneumatic.sensing import PressureReading, PressureSensor
 
 # The grasp is made when every finger's reported pressure is within this fraction of the set-point
 # (2 %: above the monitor's noise of 1 kPa at the 250 kPa default, twice the regulator's linearity).

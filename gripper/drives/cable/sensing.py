@@ -15,7 +15,7 @@ Every reading is rounded to its resolution after Gaussian noise is added. The no
 from the trial's own generator, so a trial's readings are the same whichever process runs it.
 
 Example:
-    >>> from gripper.servo.sensing import ServoSensing
+    >>> from gripper.drives.cable.sensing import ServoSensing
     >>> round(ServoSensing().position_resolution, 6)
     0.001534
 """
@@ -30,7 +30,7 @@ import numpy as np
 
 from gripper.core.fields import Validated, param
 from gripper.core.params import GripperParams
-from gripper.model.names import finger_name
+from gripper.parts.names import finger_name
 
 ENCODER_COUNTS = 4096  # ROBOTIS X-series e-Manual: Present Position, 4096 pulses per revolution
 

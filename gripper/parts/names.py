@@ -11,18 +11,17 @@ def finger_name(k: int) -> str:
     return f"f{k}"
 
 
-def drive_name(k: int, pneumatic: bool) -> str:
-    """Finger ``k``'s drive actuator: ``f{k}_chamber`` (pneumatic) or ``f{k}_servo`` (cable)."""
-    return f"{finger_name(k)}_{'chamber' if pneumatic else 'servo'}"
-
-
 @dataclass(frozen=True)
 class FingerNames:
     """Names of one finger's elements in the model (for lookups by name)."""
 
     prefix: str
     n_segments: int
-    pneumatic: bool = False
+    #: index of the first hinge from the palm: 2 when element 1 is fixed to the palm (the cable
+    #: finger), 1 when the first segment sits on a root hinge at the clamp (the pneumatic finger)
+    first_hinge: int = 2
+    #: suffix of the finger's drive actuator (``servo``, ``chamber``, ...)
+    actuator: str = "servo"
 
     @property
     def bodies(self) -> list[str]:
@@ -30,10 +29,10 @@ class FingerNames:
 
     @property
     def hinges(self) -> list[str]:
-        """The hinges from the palm out: the cable finger's join elements 1-2 .. (n-1)-n; the
-        pneumatic finger's start with ``hinge1``, its root at the clamp."""
-        first = 1 if self.pneumatic else 2
-        return [f"{self.prefix}_hinge{j}" for j in range(first, self.n_segments + 1)]
+        """The hinges from the palm out, ``hinge{first_hinge}`` .. ``hinge{n_segments}``: the cable
+        finger's join elements 1-2 .. (n-1)-n; the pneumatic finger's start with ``hinge1``, its
+        root at the clamp."""
+        return [f"{self.prefix}_hinge{j}" for j in range(self.first_hinge, self.n_segments + 1)]
 
     @property
     def pads(self) -> list[str]:
@@ -41,8 +40,8 @@ class FingerNames:
 
     cable = property(lambda self: f"{self.prefix}_cable")
     chamber = property(lambda self: f"{self.prefix}_chamber")
-    # the finger's drive actuator: the servo that reels the cable in, or the chamber's regulator
-    drive = property(lambda self: f"{self.prefix}_chamber" if self.pneumatic else f"{self.prefix}_servo")
+    # the finger's drive actuator: the servo that reels the cable in, the chamber's regulator, ...
+    drive = property(lambda self: f"{self.prefix}_{self.actuator}")
     servo = property(lambda self: f"{self.prefix}_servo")
     reel = property(lambda self: f"{self.prefix}_reel")
     tip = property(lambda self: f"{self.prefix}_tip")

@@ -1,11 +1,11 @@
 """Check a servo model against its datasheet with the finger detached.
 
-The servo is built exactly as in the gripper (:func:`gripper.servo.actuator.add_servo`) on a bare reel,
+The servo is built exactly as in the gripper (:func:`gripper.drives.cable.servo.add_servo`) on a bare reel,
 with no cable: the no-load speed, the stall torque (reel against a hard stop) and the 60° step
 time are measured in simulation.
 
 Example:
-    >>> from gripper.servo.datasheet_check import measure_servo
+    >>> from gripper.drives.cable.datasheet_check import measure_servo
     >>> from gripper.core.params import GripperParams
     >>> m = measure_servo(GripperParams())
     >>> abs(m.no_load_speed / m.datasheet.no_load_speed - 1) < 0.03
@@ -21,9 +21,9 @@ import mujoco
 import numpy as np
 
 from gripper.core.params import DEG, GripperParams
-from gripper.model.builders import REEL_MASS
-from gripper.servo.actuator import add_servo
-from gripper.servo.datasheet import ServoDatasheet
+from gripper.datasheets.servo import ServoDatasheet
+from gripper.drives.cable.finger import REEL_MASS
+from gripper.drives.cable.servo import add_servo
 
 STEP_TOLERANCE_DEG = 1.0  # a 60° move counts as done within 1° (hobby-servo dead band ≈ 1°)
 

@@ -8,7 +8,7 @@ integrator. The derivation and its checks: ``docs/model.md``, "The closed cut".
 
 Example:
     >>> from gripper.core.params import GripperParams
-    >>> from gripper.model.closure import teeth_closure_stiffness
+    >>> from gripper.drives.cable.closure import teeth_closure_stiffness
     >>> p = GripperParams()
     >>> round(teeth_closure_stiffness(p.finger, p.material), 2)   # N·m/rad, the 1.9 mm bridge
     2.25
@@ -27,13 +27,8 @@ from scipy.integrate import quad
 from scipy.optimize import brentq, least_squares
 
 from gripper.core.params import DEG, FingerGeometry, GripperParams, Material
+from gripper.parts.defaults import HINGE_LIMIT_IMPEDANCE, MIN_STEPS, RIGID_STOP_SOLIMP
 
-# Shortest limit time constant, in time steps, for every closure model: four steps held the
-# stiffest stable stop under random commands (see gripper.model.builders._add_defaults).
-MIN_STEPS = 4.0
-# Impedance of the rigid stop and of a linear closure stiffness (constant over the violation).
-HINGE_LIMIT_IMPEDANCE = 0.9995
-RIGID_STOP_SOLIMP = (HINGE_LIMIT_IMPEDANCE, HINGE_LIMIT_IMPEDANCE, 0.001, 0.5, 2.0)
 # Impedance range of the teeth's stiffening stop: d0 sets the softest, d1 (MuJoCo's cap) the
 # stiffest; G(d1)/G(d0) = 5.0 with G(d) = d²/(1-d) (see the module docstring for why not 10).
 TEETH_IMPEDANCE = (HINGE_LIMIT_IMPEDANCE, 0.9999)
@@ -72,7 +67,7 @@ def teeth_moment(g: FingerGeometry, material: Material, overrun: float) -> float
 def teeth_lock_angle(g: FingerGeometry) -> float:
     """Overrun past closure at which the first point of a tooth is squashed flat, min t/s [rad]
     (12.4° for the default design, at the grasping face). The model's hinges stop rigidly there
-    (:func:`gripper.model.builders.add_finger`)."""
+    (:func:`gripper.drives.cable.finger.add_finger`)."""
     z = np.linspace(g.bridge_thickness, g.height, 401)[1:]
     return float(np.min(_tooth(g)(z) / (z - g.hinge_z)))
 
@@ -160,7 +155,7 @@ def tune_closure_limits(spec: mujoco.MjSpec, p: GripperParams, model: mujoco.MjM
     """Set each hinge limit's ``solref`` and ``solimp`` from the closure model; ``model`` is
     ``spec`` compiled (for the inverse inertias). Edits ``spec`` in place."""
     hinges = [j for j in spec.joints if j.type == mujoco.mjtJoint.mjJNT_HINGE and "_hinge" in j.name]
-    if not hinges or p.pneumatic_fingers:  # the pneumatic finger has no cuts to close
+    if not hinges:
         return
     ids = np.array([model.joint(j.name).id for j in hinges])
     inv_w = model.dof_invweight0[model.jnt_dofadr[ids]]

@@ -7,7 +7,7 @@ on a monitor output. The model: the output pressure follows the set-point, clamp
 range, through a first-order lag whose time constant gives the datasheet's response time
 (``RESPONSE_FRACTION`` of a step); a set-point below the range's low end vents the output to 0.
 In the MJCF it is the chamber actuator's own dynamics (``dyntype="filterexact"``, the
-actuator's activation is the chamber pressure [Pa]; :mod:`gripper.pneumatic.chamber`).
+actuator's activation is the chamber pressure [Pa]; :mod:`gripper.drives.pneumatic.chamber`).
 
 Not modelled, with the reason: the flow limit (the regulator's rated flow fills a finger's
 8 mL chamber many times faster than its response time; SMC's ITV0000 flow figure was not in
@@ -15,7 +15,7 @@ the sources at hand, so this is unchecked); hysteresis and repeatability (1 % F.
 below the monitor's accuracy).
 
 Example:
-    >>> from gripper.pneumatic.regulator import regulator_datasheet
+    >>> from gripper.datasheets.regulator import regulator_datasheet
     >>> ds = regulator_datasheet("smc_itv0030")
     >>> ds.pressure_max, round(ds.time_constant, 4)
     (500000.0, 0.0434)
