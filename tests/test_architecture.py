@@ -89,3 +89,34 @@ def test_the_committed_models_are_package_data():
     assert not list((ROOT / "models" / "soft_gripper").glob("calibration*"))  # lives with the calibration
     pyproject = (ROOT / "pyproject.toml").read_text()
     assert '"data/**/*"' in pyproject and '"models/**/*"' in pyproject, "the wheel must ship both"
+
+
+def test_importing_the_package_reads_no_data_file():
+    """Every module imports without opening a data file (the calibrations, object files and
+    studies are read when first needed): importing stays quick and never fails on a data file."""
+    import subprocess
+    import sys
+
+    code = """
+import builtins, io, importlib, pathlib, pkgutil
+opened = []
+def spy(orig):
+    def wrapped(file, *a, **k):
+        opened.append(str(file))
+        return orig(file, *a, **k)
+    return wrapped
+builtins.open = spy(builtins.open)
+io.open = builtins.open
+pathlib.Path.read_text = (lambda orig: lambda self, *a, **k: (opened.append(str(self)), orig(self, *a, **k))[1])(
+    pathlib.Path.read_text)
+pathlib.Path.read_bytes = (lambda orig: lambda self, *a, **k: (opened.append(str(self)), orig(self, *a, **k))[1])(
+    pathlib.Path.read_bytes)
+import gripper
+for m in pkgutil.walk_packages(gripper.__path__, "gripper."):
+    if not m.name.startswith(("gripper.rl", "gripper.envs.sb3")):  # the rl extra's modules
+        importlib.import_module(m.name)
+print("\\n".join(f for f in opened if "/gripper/" in f and "dist-info" not in f and not f.endswith(".py")))
+"""
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "", done.stdout

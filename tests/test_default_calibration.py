@@ -61,7 +61,7 @@ def test_committed_fit_meets_the_accuracy_lines():
 def test_committed_reference_static_points_are_at_rest():
     """The committed reference record carries its static points relaxed to rest, each accepted
     on its own residual (the bending angle's move over the last half second)."""
-    from gripper.references.continuum_checks import REST_TOL_DEG
+    from gripper.references.relaxation import REST_TOL_DEG
 
     rec = json.loads((DEFAULT_CALIBRATION_FILE.parent / "reference.json").read_text())
     moved = rec["rest_moved_deg"]

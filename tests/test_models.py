@@ -131,3 +131,18 @@ def test_the_closed_cuts_match_is_reused_bitwise():
     again = scene.build_grasp_scene(p, get_object("block"), Placement())
     for field in ("jnt_solref", "jnt_solimp", "jnt_range", "jnt_stiffness", "body_mass", "geom_size"):
         assert np.array_equal(getattr(first, field), getattr(again, field)), field
+
+
+def test_the_open_loop_grasp_closes_every_drive():
+    """The speed benchmarks' fixed grasp (gripper.experiments.smoke) drives each gripper's own
+    actuators: the cable servos to 2 rad, the chambers to 2/π of their highest pressure."""
+    import numpy as np
+
+    from gripper.experiments.smoke import OPEN_LOOP_CLOSE, open_loop_grasp_controls
+
+    for name, p in GRIPPERS.items():
+        m = build_scene_spec(p, with_object=False).compile()
+        u = open_loop_grasp_controls(p, m, 3.0)
+        act = drive_for(p).actuator_ids(m)
+        np.testing.assert_allclose(u[-1, act], OPEN_LOOP_CLOSE * m.actuator_ctrlrange[act, 1])
+        assert u[:, act].min() == 0.0, name

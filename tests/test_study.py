@@ -180,3 +180,57 @@ def test_an_objective_error_names_its_line(tmp_path):
                  'bending = { r_max = 0.4 }\n[objective]\nminimize = "nonsense"\n')
     with pytest.raises(ValueError, match=r"s\.toml:8: objective\.minimize: unknown metric 'nonsense'"):
         load_study(f)
+
+
+def test_every_shipped_study_loads():
+    """The studies that replaced the hand-written sweeps (scripts/ of 0.17.0) build every point."""
+    from gripper.core.resources import STUDIES_DIR
+
+    names = sorted(p.stem for p in STUDIES_DIR.glob("*.toml") if not p.stem.startswith("envelope_"))
+    assert {"step_convergence", "set_point_forces", "set_point_forces_pneumatic", "friction_sensitivity",
+            "protocol_ablation", "small_parts", "paper_box_mesh"} <= set(names)
+    for name in names:
+        assert load_study(name).design_points()
+
+
+def test_a_study_varies_how_its_trials_run(tmp_path):
+    """protocol.* and placement.* keys reach the trials: the squeeze rises with the grip set-point
+    (the controller holds each cable at it: docs/controller.md), and a finer step keeps the
+    control period."""
+    from gripper.studies.study import run_point
+
+    f = tmp_path / "s.toml"
+    f.write_text('[study]\nname = "t"\n[fixed]\n"placement.friction_scale" = 1.2\n'
+                 '[vary]\n"protocol.grip_tension" = [2.0, 10.0]\n'
+                 '[responses]\ngrasp = { objects = ["block"], trials = 1 }\n')
+    study = load_study(f)
+    proto, placement = study.trial_setup({"protocol.timestep": 0.001})
+    assert proto.chunk_steps * proto.timestep == pytest.approx(study.protocol.chunk_steps * study.protocol.timestep)
+    assert placement == {"friction_scale": 1.2}
+    low, high = (run_point(study, i, pt)["metrics"]["grasp_block_median_peak_force_N"]
+                 for i, pt in list(enumerate(study.design_points()))[1:])
+    assert high > 2.0 * low
+
+
+@pytest.mark.parametrize(("vary", "message"), [
+    ('"protocol.grip_tension" = [80.0]', "protocol.grip_tension"),
+    ('"placement.friction_scale" = [0.0]', "placement.friction_scale"),
+    ('"object.mesh_points" = [[4, 4, 5]]', "no deformable object"),
+    ('"protocol.no_such" = [1.0]', "unknown parameter"),
+])
+def test_bad_trial_settings_are_refused_at_load(tmp_path, vary, message):
+    f = tmp_path / "s.toml"
+    f.write_text(f'[study]\nname = "t"\n[vary]\n{vary}\n[responses]\ngrasp = {{ objects = ["block"], trials = 1 }}\n')
+    with pytest.raises(ValueError, match=message):
+        load_study(f)
+
+
+def test_the_envelope_response_finds_a_gripping_range():
+    """A 40 mm cylinder is inside the default's envelope (its lower end is 30 mm: docs/envelope.md),
+    a 5 mm one below it."""
+    from gripper.experiments.design_responses import envelope_response
+    from gripper.experiments.protocol import GraspProtocol
+
+    out = envelope_response(GripperParams(), {"shapes": ["cylinder"], "sizes": [0.005, 0.04], "trials": 1}, 0,
+                            GraspProtocol())
+    assert out == {"envelope_cylinder_smallest_m": 0.04, "envelope_cylinder_largest_m": 0.04}

@@ -347,7 +347,7 @@ def chain_contact(params: GripperParams | None, tension: float, obstacle: Obstac
     geom.priority = 1
     if obstacle.only_element is not None:
         geom.contype = geom.conaffinity = 0
-        spec.add_pair(geomname1="obstacle", geomname2=f"f0_seg{obstacle.only_element}_collision",
+        spec.add_pair(geomname1="obstacle", geomname2=names.collision(obstacle.only_element),
                       condim=1, friction=[0, 0, 0, 0, 0], solref=solref, solimp=solimp)
     m = spec.compile()
     d = mujoco.MjData(m)
@@ -511,7 +511,8 @@ def continuum_contact(params: GripperParams | None, tension: float, obstacle: Ob
         ValueError: a cut closed (the body has no contact between cut faces).
         SimulationUnstable: MuJoCo warned or the state became non-finite.
     """
-    from gripper.references.continuum_checks import relax_to_rest, relaxation_config
+    from gripper.references.continuum import relaxation_config
+    from gripper.references.relaxation import relax_to_rest
 
     t0 = time.perf_counter()
     factor = committed_modulus_factor() if modulus_factor is None else float(modulus_factor)

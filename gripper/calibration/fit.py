@@ -233,10 +233,10 @@ def build_hinge_finger(p: GripperParams, timestep: float, *, static: bool = Fals
     add_element_meshes(spec, p)
     names = add_finger(spec, spec.worldbody, p, "f0", [0, 0, 0], [1, 0, 0, 0], defaults)
     ten = spec.add_tendon(name=names.cable, width=0.5 * p.cable.diameter)
-    ten.wrap_site(f"{names.prefix}_cable_guide")
+    ten.wrap_site(names.cable_guide)
     for j in range(1, p.finger.n_segments + 1):
-        ten.wrap_site(f"{names.prefix}_seg{j}_cable")
-    ten.wrap_site(f"{names.prefix}_tip_anchor")
+        ten.wrap_site(names.cable_site(j))
+    ten.wrap_site(names.tip_anchor)
     act = spec.add_actuator(name="tension", target=names.cable,
                             trntype=mujoco.mjtTrn.mjTRN_TENDON)
     act.gear = [-1.0, 0, 0, 0, 0, 0]  # positive control pulls: tension [N]

@@ -39,7 +39,7 @@ from gripper.core.atomic import write_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import DEFAULT_CALIBRATION_FILE, GripperParams
 from gripper.references.continuum import BendingRecord, ReferenceConfig, run_reference
-from gripper.references.continuum_checks import REST_TOL_DEG
+from gripper.references.relaxation import REST_TOL_DEG
 
 REFERENCE_KINDS = ("continuum", "fmbs")
 # Files of a calibration folder that the committed default keeps (reference.json is the record

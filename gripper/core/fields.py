@@ -23,6 +23,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar, Self
 
@@ -109,13 +110,16 @@ class FieldSpec:
         return not (self.hi is not None and (v >= self.hi if self.hi_open else v > self.hi))
 
 
-def param(default: Any, unit: str, *, gt: float | None = None, ge: float | None = None,
+def param(default: Any, unit: str, *, factory: Callable[[], Any] | None = None,
+          gt: float | None = None, ge: float | None = None,
           lt: float | None = None, le: float | None = None, integer: bool = False,
           choices: tuple[str, ...] | list[str] = (), numbers: bool = False, allow_empty: bool = False,
           source: str = "") -> Any:
     """A dataclass field with its :class:`FieldSpec` (``gt``/``ge``: lower bound, exclusive or
     inclusive; ``lt``/``le``: upper bound). A bool default makes a flag, ``choices`` a choice,
-    ``numbers`` a list of numbers (``allow_empty``: the list may be empty). ``choices`` given as a
+    ``numbers`` a list of numbers (``allow_empty``: the list may be empty). ``factory`` (with
+    ``default`` None) computes the default when an instance is made, not at import: defaults
+    read from a committed data file. ``choices`` given as a
     list stays that list (a registry that grows: its current entries are allowed)."""
     if isinstance(default, bool):
         kind = "bool"
@@ -129,6 +133,8 @@ def param(default: Any, unit: str, *, gt: float | None = None, ge: float | None 
                      hi=lt if lt is not None else le, lo_open=gt is not None,
                      hi_open=lt is not None, source=source, allow_empty=allow_empty,
                      choices=choices if isinstance(choices, list) else tuple(choices))
+    if factory is not None:
+        return dataclasses.field(default_factory=factory, metadata={"spec": spec})
     return dataclasses.field(default=default, metadata={"spec": spec})
 
 

@@ -16,6 +16,7 @@ Example:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import json
 import math
 from dataclasses import dataclass, field
@@ -46,10 +47,16 @@ SPRING_SETS = ("calibrated", "paper", "paper_per_radian")
 TIP_ELEMENT_INERTIA = 8.3e-7
 
 
-def _committed_springs() -> tuple[tuple[float, ...], tuple[float, ...], tuple[float, ...]]:
-    """(stiffness, damping, rest_angle_deg) fitted in :data:`DEFAULT_CALIBRATION_FILE`.
+def _spring(name: str):
+    return lambda: committed_springs()[name]
 
-    Read once, at import, with no checks beyond shape (the schema and the design hash are
+
+@functools.cache
+def committed_springs() -> dict[str, tuple[float, ...]]:
+    """``stiffness``, ``damping`` and ``rest_angle_deg`` fitted in :data:`DEFAULT_CALIBRATION_FILE`:
+    the defaults of :class:`HingeSprings`.
+
+    Read once, when first needed (not at import), with no checks beyond shape (the schema and the design hash are
     checked by :mod:`gripper.calibration.calfile` and by the staleness test).
     """
     try:
@@ -57,13 +64,10 @@ def _committed_springs() -> tuple[tuple[float, ...], tuple[float, ...], tuple[fl
         out = tuple(tuple(float(v) for v in fitted[key]) for key in
                     ("stiffness_Nm_per_rad", "damping_Nms_per_rad", "rest_angle_deg"))
     except (OSError, KeyError, TypeError, ValueError) as e:
-        raise ImportError(f"gripper: the default design's committed calibration "
+        raise RuntimeError(f"gripper: the default design's committed calibration "
                           f"{DEFAULT_CALIBRATION_FILE} is missing or malformed ({e}); "
                           f"regenerate it with 'gripper calibrate --write-default'") from None
-    return out  # type: ignore[return-value]
-
-
-CALIBRATED_STIFFNESS, CALIBRATED_DAMPING, CALIBRATED_REST_ANGLE_DEG = _committed_springs()
+    return dict(zip(("stiffness", "damping", "rest_angle_deg"), out, strict=True))
 
 # The committed calibration of the default pneumatic finger (``gripper calibrate --reference
 # actuator --write-default``): paper 001's actuator in finite elements, fitted. Its ``design``
@@ -75,19 +79,19 @@ PNEUMATIC_CALIBRATION_FILE = PNEUMATIC_CALIBRATION_DIR / "calibration.json"
 ACTUATIONS = ["cable", "pneumatic"]
 
 
-def _committed_pneumatic() -> dict[str, float]:
+@functools.cache
+def committed_pneumatic() -> dict[str, float]:
+    """The committed pneumatic calibration's design and fitted values: the defaults of
+    :class:`PneumaticFinger` (read once, when first needed)."""
     try:
         data = json.loads(PNEUMATIC_CALIBRATION_FILE.read_text())
         return {k: float(v) for k, v in {**data["design"], **data["fitted"]}.items()}
     except (OSError, KeyError, TypeError, ValueError, AttributeError) as e:
-        raise ImportError(f"gripper: the pneumatic finger's committed calibration {PNEUMATIC_CALIBRATION_FILE} is "
+        raise RuntimeError(f"gripper: the pneumatic finger's committed calibration {PNEUMATIC_CALIBRATION_FILE} is "
                           f"missing or malformed ({e}); regenerate it with "
                           f"'gripper calibrate --reference actuator --write-default'") from None
 
 
-PNEUMATIC_CALIBRATED = _committed_pneumatic()
-_CALIBRATED = {"stiffness": CALIBRATED_STIFFNESS, "damping": CALIBRATED_DAMPING,
-               "rest_angle_deg": CALIBRATED_REST_ANGLE_DEG}
 
 
 @dataclass(frozen=True)
@@ -247,11 +251,11 @@ class HingeSprings(Validated):
 
     SECTION = "springs"
 
-    stiffness: tuple[float, ...] = param(CALIBRATED_STIFFNESS, "N·m/rad", gt=0, numbers=True,
+    stiffness: tuple[float, ...] = param(None, "N·m/rad", factory=_spring("stiffness"), gt=0, numbers=True,
                                          source="fitted: the committed calibration")
-    damping: tuple[float, ...] = param(CALIBRATED_DAMPING, "N·m·s/rad", ge=0, numbers=True,
+    damping: tuple[float, ...] = param(None, "N·m·s/rad", factory=_spring("damping"), ge=0, numbers=True,
                                        source="fitted: the committed calibration")
-    rest_angle_deg: tuple[float, ...] = param(CALIBRATED_REST_ANGLE_DEG, "deg", gt=-90, lt=90,
+    rest_angle_deg: tuple[float, ...] = param(None, "deg", factory=_spring("rest_angle_deg"), gt=-90, lt=90,
                                               numbers=True, source="fitted: the committed calibration")
     closure: str = param("teeth", "-", choices=CLOSURE_MODELS, source="gripper.drives.cable.closure")
     closure_stiffness: float = param(1.0, "N·m/rad", gt=0,
@@ -286,7 +290,7 @@ class HingeSprings(Validated):
         out = []
         for name in ("stiffness", "damping", "rest_angle_deg"):
             v = tuple(getattr(self, name))
-            if len(v) not in (1, n_hinges) and v == _CALIBRATED[name]:
+            if len(v) not in (1, n_hinges) and v == committed_springs()[name]:
                 v = (sum(v) / len(v),)
             out.append(v * n_hinges if len(v) == 1 else v)
         return tuple(out)
@@ -298,7 +302,7 @@ class HingeSprings(Validated):
         for name in ("stiffness", "damping", "rest_angle_deg"):
             values = getattr(self, name)
             if (n_hinges is not None and len(values) not in (1, n_hinges)
-                    and tuple(values) != _CALIBRATED[name]):
+                    and tuple(values) != committed_springs()[name]):
                 raise ValueError(f"springs.{name}: expected 1 or {n_hinges} values (one per "
                                  f"hinge), got {len(values)}")
         return self
@@ -436,6 +440,13 @@ class Actuation(Validated):
 
 
 _PN_CAL = "fitted: the committed pneumatic calibration"
+
+
+def _pneumatic(name: str):
+    return lambda: committed_pneumatic()[name]
+# Paper 001's actuator pressure range, 0-250 kPa (§2.3 Step 3): the calibration's range, the
+# regulator's default set-point limit, the finite-element model's load and the grip set-point.
+PAPER_001_PRESSURE_MAX = 250e3  # Pa
 _PN_SHAPE = "paper 001's actuator (gripper.references.pneumatic_params), as the committed calibration records it"
 
 
@@ -474,21 +485,21 @@ class PneumaticFinger(Validated):
 
     n_segments: int = param(8, "-", ge=3, le=64, integer=True,
                             source="assumed: seven hinges 20 mm apart, about the cable finger's 16 mm elements")
-    length: float = param(PNEUMATIC_CALIBRATED["length"], "m", gt=0, source=_PN_SHAPE)
-    width: float = param(PNEUMATIC_CALIBRATED["width"], "m", gt=0, source=_PN_SHAPE)
-    height: float = param(PNEUMATIC_CALIBRATED["height"], "m", gt=0, source=_PN_SHAPE)
-    neutral_height: float = param(PNEUMATIC_CALIBRATED["neutral_height"], "m", gt=0, source=_PN_SHAPE)
-    mass: float = param(PNEUMATIC_CALIBRATED["mass"], "kg", gt=0, source=_PN_SHAPE)
-    bending_stiffness: float = param(PNEUMATIC_CALIBRATED["bending_stiffness"], "N·m²", gt=0, source=_PN_CAL)
-    stiffening: float = param(PNEUMATIC_CALIBRATED["stiffening"], "N·m²", ge=0, source=_PN_CAL)
-    root_stiffness: float = param(PNEUMATIC_CALIBRATED["root_stiffness"], "N·m/rad", gt=0, source=_PN_CAL)
-    knee_curvature: float = param(PNEUMATIC_CALIBRATED["knee_curvature"], "1/m", ge=0, source=_PN_CAL)
-    moment_per_pascal: float = param(PNEUMATIC_CALIBRATED["moment_per_pascal"], "N·m/Pa", gt=0, source=_PN_CAL)
+    length: float = param(None, "m", factory=_pneumatic("length"), gt=0, source=_PN_SHAPE)
+    width: float = param(None, "m", factory=_pneumatic("width"), gt=0, source=_PN_SHAPE)
+    height: float = param(None, "m", factory=_pneumatic("height"), gt=0, source=_PN_SHAPE)
+    neutral_height: float = param(None, "m", factory=_pneumatic("neutral_height"), gt=0, source=_PN_SHAPE)
+    mass: float = param(None, "kg", factory=_pneumatic("mass"), gt=0, source=_PN_SHAPE)
+    bending_stiffness: float = param(None, "N·m²", factory=_pneumatic("bending_stiffness"), gt=0, source=_PN_CAL)
+    stiffening: float = param(None, "N·m²", factory=_pneumatic("stiffening"), ge=0, source=_PN_CAL)
+    root_stiffness: float = param(None, "N·m/rad", factory=_pneumatic("root_stiffness"), gt=0, source=_PN_CAL)
+    knee_curvature: float = param(None, "1/m", factory=_pneumatic("knee_curvature"), ge=0, source=_PN_CAL)
+    moment_per_pascal: float = param(None, "N·m/Pa", factory=_pneumatic("moment_per_pascal"), gt=0, source=_PN_CAL)
     damping_ratio: float = param(0.5, "-", gt=0, le=10,
                                  source="assumed: paper 000 Table 2's modal damping ratio of its silicone finger")
     regulator: str = param("smc_itv0030", "-", choices=tuple(REGULATOR_PRESETS),
                            source="the datasheets in gripper.datasheets.regulator")
-    pressure_max: float = param(250e3, "Pa", gt=0, le=1e6,
+    pressure_max: float = param(PAPER_001_PRESSURE_MAX, "Pa", gt=0, le=1e6,
                                 source="paper 001 §2.3 Step 3: 0-250 kPa, the calibration's range")
 
     @property

@@ -80,7 +80,7 @@ class Drive(ABC):
     effort_display_scale: ClassVar[float] = 1.0
     effort_format: ClassVar[str] = "4.1f"
     #: design-study responses this drive can run (``gripper.studies.study_file.RESPONSES``)
-    responses: ClassVar[tuple[str, ...]] = ("grasp",)
+    responses: ClassVar[tuple[str, ...]] = ("grasp", "holding_force", "envelope")
     #: observation parts (name, per-finger size or None for per-hinge/per-pad, unit) after the
     #: hinge velocities and at the end (what the hardware reports)
     state_observations: ClassVar[tuple[tuple[str, str], ...]] = ()
@@ -187,8 +187,8 @@ class Drive(ABC):
 
     @abstractmethod
     def effort_sensors(self, m: mujoco.MjModel) -> tuple[np.ndarray, np.ndarray]:
-        """Sensor addresses and factors whose product is each finger's true effort (the unit of
-        the set-point: N of cable tension, Pa of chamber pressure)."""
+        """Sensor addresses and divisors: each finger's true effort (in the set-point's unit: N of
+        cable tension, Pa of chamber pressure) is its sensor value over its divisor."""
 
     @abstractmethod
     def command_rate(self, protocol) -> float:

@@ -33,9 +33,9 @@ RENDER_MODES = ["rgb_array", "depth_array"] + (
     ["human"] if os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY") else [])
 
 
-# The environment's own arguments besides EnvConfig's fields: the design as a parameter file
-# and a calibration file (``params`` also takes a GripperParams), and the renderer's.
-DESIGN_ARGUMENTS = ("params", "calibration")
+# The environment's own arguments besides EnvConfig's fields: the design's fingers and
+# calibration file (``params``, an EnvConfig field, also takes a parameter file), and the renderer's.
+DESIGN_ARGUMENTS = ("calibration", "actuation")
 RENDER_ARGUMENTS = {"render_mode": None, "width": 640, "height": 480, "camera": "front"}
 
 
@@ -47,7 +47,7 @@ def make_config(**kwargs: Any) -> EnvConfig:
     Raises:
         ValueError: an unknown argument (naming the allowed ones) or a bad value.
     """
-    allowed = [f.name for f in dataclasses.fields(EnvConfig)] + ["calibration", "actuation"]
+    allowed = [f.name for f in dataclasses.fields(EnvConfig)] + list(DESIGN_ARGUMENTS)
     unknown = sorted(set(kwargs) - set(allowed))
     if unknown:
         raise ValueError(f"{ENV_ID}: unknown argument {', '.join(unknown)}; allowed: "

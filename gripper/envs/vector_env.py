@@ -28,6 +28,7 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from gripper.envs.grasp_env import RENDER_MODES, check_action, check_render_args, env_arguments, make_spaces
+from gripper.envs.registration import MAX_EPISODE_STEPS
 from gripper.envs.task import (
     BatchStepper,
     SceneSet,
@@ -49,7 +50,7 @@ class SoftGripperGraspVectorEnv(VectorEnv):
 
     metadata = {"render_modes": RENDER_MODES, "render_fps": 50, "autoreset_mode": AutoresetMode.NEXT_STEP}
 
-    def __init__(self, num_envs: int = 1, max_episode_steps: int | None = 300, nthread: int | None = None,
+    def __init__(self, num_envs: int = 1, max_episode_steps: int | None = MAX_EPISODE_STEPS, nthread: int | None = None,
                  **env_kwargs: Any):
         if not isinstance(num_envs, int) or num_envs < 1:
             raise ValueError(f"num_envs: must be an integer >= 1, got {num_envs!r}")

@@ -52,7 +52,7 @@ def _scene(p: GripperParams) -> tuple[mujoco.MjModel, FingerNames]:
     stop = spec.worldbody.add_geom(name="stop", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0.05, 0.05, 0.01],
                                    pos=[drive.finger_length, 0.0, drive.finger_height], zaxis=[0.0, 0.0, -1.0],
                                    contype=0, conaffinity=0)
-    tip = f"f0_seg{n}_pad_collision" if pads else f"f0_seg{n}_collision"
+    tip = names.pad_collision(n) if pads else names.collision(n)
     spec.add_pair(geomname1=stop.name, geomname2=tip, condim=1, friction=[0, 0, 0, 0, 0])
     return spec.compile(), names
 

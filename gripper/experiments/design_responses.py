@@ -11,12 +11,19 @@ Example:
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Any
 
 import numpy as np
 
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
+from gripper.experiments.protocol import GraspProtocol, TrialNoise
+from gripper.experiments.pullout import run_pullout
+from gripper.experiments.trial import run_trial, sample_placement
+from gripper.objects.envelope_objects import HELD_FRACTION, SHAPES, envelope_object
+from gripper.objects.library import get_object
+from gripper.objects.scene_objects import Placement
 
 # Samples of the bending curve kept per point (r from 0 to r_max).
 BEND_CURVE_POINTS = 21
@@ -68,9 +75,43 @@ def blocked_tip_force(p: GripperParams, r: float) -> float:
     return float(np.linalg.norm(d.efc_force[:d.nefc][rows]))
 
 
-def measure_responses(p: GripperParams, responses: dict, seed: int = 0) -> tuple[dict[str, float | None], dict]:
+def envelope_response(p: GripperParams, opts: dict, seed: int, protocol: GraspProtocol) -> dict[str, float | None]:
+    """Per shape, the smallest and largest width [m] held in at least :data:`HELD_FRACTION` of
+    ``trials`` grasps (None: none held), on the grid ``sizes`` at one ``mass`` [kg] and ``friction``
+    (the envelope's defaults: 50 g, 0.6), as ``gripper envelope`` finds its gripping range."""
+    out: dict[str, float | None] = {}
+    mass, mu, trials = float(opts.get("mass", 0.05)), float(opts.get("friction", 0.6)), int(opts.get("trials", 3))
+    for shape in opts.get("shapes", list(SHAPES)):
+        held = []
+        for size in sorted(float(w) for w in opts.get("sizes", [0.03, 0.06, 0.09])):
+            obj = envelope_object(shape, size, mass, mu)
+            recs = [run_trial(obj, seed, i, params=p, protocol=protocol) for i in range(trials)]
+            ok = [bool(r["success"]) for r in recs if r["status"] == "ok"]
+            if ok and sum(ok) / len(ok) >= HELD_FRACTION - 1e-9:
+                held.append(size)
+        out[f"envelope_{shape}_smallest_m"] = held[0] if held else None
+        out[f"envelope_{shape}_largest_m"] = held[-1] if held else None
+    return out
+
+
+def measure_responses(p: GripperParams, responses: dict, seed: int = 0, *, protocol: GraspProtocol | None = None,
+                      placement: dict | None = None) -> tuple[dict[str, float | None], dict]:
     """(metrics, curves) of design ``p`` for the study file's ``[responses]`` table; grasp
-    trials use ``seed``. Raises whatever a response raises (the study records it)."""
+    trials and pulls use ``seed``, ``protocol`` (default: the benchmark's) and each trial's
+    sampled placement with ``placement``'s scales in place of the sampled ones
+    (``{"friction_scale": 0.5}``). Raises whatever a response raises (the study records it)."""
+    proto = protocol or GraspProtocol()
+    scales = dict(placement or {})
+    mesh_points = scales.pop("mesh_points", None)
+
+    def placed(obj, i: int) -> Placement:
+        return sample_placement(obj, TrialNoise(), seed, i).replace(**scales)
+
+    def get(spec: str):
+        obj = get_object(spec)
+        return dataclasses.replace(obj, mesh_points=tuple(mesh_points)).validate() if mesh_points and obj.is_flex \
+            else obj
+
     met: dict[str, float | None] = {}
     curves: dict[str, Any] = {}
     resp = responses
@@ -91,12 +132,22 @@ def measure_responses(p: GripperParams, responses: dict, seed: int = 0) -> tuple
     if "blocked_force" in resp:
         met["blocked_tip_force_N"] = blocked_tip_force(p, float(resp["blocked_force"].get("r", 0.15)))
     if "grasp" in resp:
-        from gripper.experiments.trial import run_trial
         g = resp["grasp"]
         for spec in g.get("objects", ["block"]):
-            recs = [run_trial(spec, seed, i, params=p) for i in range(int(g.get("trials", 5)))]
+            obj = get(spec)
+            recs = [run_trial(obj, seed, i, params=p, protocol=proto, placement=placed(obj, i) if scales else None)
+                    for i in range(int(g.get("trials", 5)))]
             o = recs[0].object
             ok = [r for r in recs if r["status"] == "ok"]
             met[f"grasp_{o}_success_rate"] = (sum(bool(r["success"]) for r in ok) / len(ok)) if ok else None
             met[f"grasp_{o}_median_peak_force_N"] = float(np.median([r["peak_total_force_N"] for r in recs]))
+    if "envelope" in resp:
+        met.update(envelope_response(p, resp["envelope"], seed, proto))
+    if "holding_force" in resp:
+        h = resp["holding_force"]
+        for spec in h.get("objects", ["block"]):
+            obj = get(spec)
+            pulls = [run_pullout(obj, params=p, protocol=proto, placement=placed(obj, i))["holding_force_N"]
+                     for i in range(int(h.get("trials", 3)))]
+            met[f"holding_{obj.name}_median_force_N"] = float(np.median(pulls))
     return met, curves

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from gripper.core.fields import Validated, param
+from gripper.core.params import PAPER_001_PRESSURE_MAX
 from gripper.core.timesteps import PAPER_BENDING_TIMESTEP, TRIAL_TIMESTEP, check_step_budget
 
 # Grasp policies: the object-agnostic controller, or each object's own closing command.
@@ -81,7 +82,7 @@ class GraspProtocol(Validated):
     grip_tension: float = param(GRIP_TENSION, "N", gt=0, le=54,
                                 source="controller's grip set-point: cable tension per finger "
                                 "(docs/controller.md; at most the servo's stall tension, 54 N)")
-    grip_pressure: float = param(250e3, "Pa", gt=0, le=1e6,
+    grip_pressure: float = param(PAPER_001_PRESSURE_MAX, "Pa", gt=0, le=1e6,
                                  source="pneumatic gripper's grip set-point: chamber pressure, the calibration's "
                                  "highest (paper 001 §2.3: 0-250 kPa; gripper.drives.pneumatic.controller)")
     pressure_rate: float = param(250e3, "Pa/s", ge=1e3, le=1e8,

@@ -55,7 +55,7 @@ from gripper.objects.grasp_object import (
     RIGID_KINDS,
     GraspObject,
 )
-from gripper.objects.library import RIGID_CLOSE, mesh_object
+from gripper.objects.mesh_objects import RIGID_CLOSE, mesh_object
 
 MATERIAL_KEYS = ("youngs_modulus", "thickness", "yield_strain")
 SECTIONS: dict[str, tuple[str, ...] | None] = {

@@ -14,19 +14,14 @@ Example:
 from __future__ import annotations
 
 import dataclasses
-import math
-import warnings
-from pathlib import Path
 
 from gripper.core.resources import OBJECTS_DIR
+from gripper.objects.files import load_object_file
 from gripper.objects.grasp_object import GraspObject
+from gripper.objects.mesh_objects import DEFAULT_MESH_DENSITY, RIGID_CLOSE, load_mesh, mesh_object
 
 # --- the default library -------------------------------------------------------------------
 
-# The rigid objects' closing command: near the end of the servo's travel (π) and past full finger
-# closure (≈ 2.3 rad), so the servo stalls on the part and squeezes with its stall torque
-# (gripper/data/objects/block.toml gives the reason); user meshes default to it.
-RIGID_CLOSE = 3.0
 
 
 DEFAULT_OBJECTS = ("balloon", "block", "cylinder", "paper_box", "bag")
@@ -36,8 +31,6 @@ EXTRA_OBJECTS = ("bag_pack",)
 
 
 def _library() -> dict[str, GraspObject]:
-    from gripper.objects.files import load_object_file
-
     return {name: load_object_file(OBJECTS_DIR / f"{name}.toml") for name in (*DEFAULT_OBJECTS, *EXTRA_OBJECTS)}
 
 
@@ -75,8 +68,6 @@ def get_object(spec: str) -> GraspObject:
                                  f"got {mass_text!r}") from None
         return dataclasses.replace(mesh_object(path, mass=mass), name=spec).validate()
     if spec.endswith((".toml", ".json")):
-        from gripper.objects.files import load_object_file
-
         return load_object_file(spec)
     lib = library()
     if spec not in lib:
@@ -85,68 +76,5 @@ def get_object(spec: str) -> GraspObject:
     return lib[spec]
 
 
-# --- user meshes ---------------------------------------------------------------------------
-
-# Density used for a user mesh given without a mass: a typical 3D-printed part (PLA 1240 kg/m³
-# at about 50 % effective fill).
-DEFAULT_MESH_DENSITY = 620.0
-
-
-def load_mesh(path: str | Path, *, repair: bool = True):
-    """Load an STL/OBJ/PLY with trimesh; repair small holes (with a warning) or refuse.
-
-    Raises:
-        ValueError: unreadable file, not a triangle mesh, or not watertight after repair.
-    """
-    import trimesh
-
-    path = Path(path)
-    if not path.is_file():
-        raise ValueError(f"mesh: file not found or unreadable: {path}")
-    try:
-        mesh = trimesh.load(path, force="mesh")
-    except Exception as e:  # trimesh raises many types for malformed files
-        raise ValueError(f"mesh: cannot read {path} as STL/OBJ/PLY ({e})") from None
-    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ValueError(f"mesh: {path} holds no triangles")
-    if not mesh.is_watertight:
-        if repair:
-            trimesh.repair.fill_holes(mesh)
-            trimesh.repair.fix_normals(mesh)
-        if not mesh.is_watertight:
-            raise ValueError(f"mesh: {path} is not watertight (holes or open edges) and could not "
-                             "be repaired; close it in a mesh editor")
-        warnings.warn(f"mesh {path} was not watertight; holes filled by trimesh", stacklevel=2)
-    if mesh.volume <= 0:
-        mesh.invert()
-    return mesh
-
-
-def mesh_object(path: str | Path, *, mass: float | None = None, density: float | None = None,
-                friction: float = 0.6, close_command: float = RIGID_CLOSE, damage: str = "contact_force",
-                damage_limit: float = 200.0, yaw_symmetric: bool = False, name: str | None = None,
-                reasons: tuple[tuple[str, str], ...] = ()) -> GraspObject:
-    """A rigid object from a user mesh (metres), centred on its bounding box, base on the floor.
-
-    Mass from ``mass``, else ``density`` (default :data:`DEFAULT_MESH_DENSITY`) × the mesh's
-    volume; inertia from the mesh (MuJoCo computes it from the same triangles); collision from
-    its convex hull. The footprint checked against the aperture is the hull's horizontal radius
-    about the centre. The defaults of the ``mesh:PATH`` shortcut (friction 0.6, a 200 N contact
-    force limit, full closing) are the block's; an object file declares its own.
-    """
-    mesh = load_mesh(path)
-    lo, hi = mesh.bounds
-    hx, hy, hz = (float(v) for v in 0.5 * (hi - lo))
-    centre = 0.5 * (lo + hi)
-    hull = mesh.convex_hull.vertices - centre
-    footprint = float(max(math.hypot(x, y) for x, y in hull[:, :2]))
-    if mass is None:
-        rho = DEFAULT_MESH_DENSITY if density is None else density
-        if isinstance(rho, bool) or not (isinstance(rho, int | float) and math.isfinite(rho) and rho > 0):
-            raise ValueError(f"mesh: density must be > 0 kg/m³, got {rho!r}")
-        mass = rho * float(mesh.volume)
-    obj = GraspObject(name=name or f"mesh:{path}", kind="mesh", size=(hx, hy, hz), mass=mass,
-                      friction=friction, yaw_symmetric=yaw_symmetric, close_command=close_command,
-                      damage=damage, damage_limit=damage_limit, mesh_file=str(path),
-                      footprint_radius=footprint, reasons=reasons)
-    return obj.validate()
+__all__ = ["DEFAULT_MESH_DENSITY", "DEFAULT_OBJECTS", "EXTRA_OBJECTS", "LIBRARY", "RIGID_CLOSE", "get_object",
+           "library", "load_mesh", "mesh_object"]

@@ -154,7 +154,7 @@ class PadMaker:
         the pad body ``{prefix}_seg{j}_padbody`` slides along -z of the finger frame on
         ``{prefix}_seg{j}_padslide`` and carries the rounded collision mesh ``pad_{kind}``.
         """
-        p, prefix = self.p, self.names.prefix
+        p = self.p
         element_mass = (p.material.density * _convex_volume(element_vertices)
                         if not math.isfinite(collision.mass) or collision.mass <= 0 else float(collision.mass))
         # the pad's own mass: the silicone layer of its depth under the grasping face
@@ -162,15 +162,16 @@ class PadMaker:
         collision.contype = 0
         collision.conaffinity = 0
         collision.mass = element_mass - pad_mass
-        pad = seg.add_body(name=f"{prefix}_seg{j}_padbody")
-        slide = f"{prefix}_seg{j}_padslide"
+        names = self.names
+        pad = seg.add_body(name=names.pad_body(j))
+        slide = names.pad_slide(j)
         spring = self.spring
         pad.add_joint(name=slide, type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[0, 0, -1],
                       limited=mujoco.mjtLimited.mjLIMITED_TRUE, range=[-PAD_EXTENSION, self.depth],
                       stiffness=[float(spring.stiffness[0]), 0, 0], springref=0.0,
                       damping=[pad_damping(self.drive, element_mass), 0, 0],
                       solref_limit=list(RIGID_CONTACT_SOLREF), solimp_limit=list(RIGID_CONTACT_SOLIMP))
-        pad.add_geom(self.defaults["collision"], name=f"{prefix}_seg{j}_pad_collision",
+        pad.add_geom(self.defaults["collision"], name=names.pad_collision(j),
                      type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"pad_{kind}", mass=pad_mass)
         for i in range(1, len(spring.knots)):
             ten = self.spec.add_tendon(name=f"{slide}_knot{i}", stiffness=[float(spring.stiffness[i]), 0, 0],
@@ -181,9 +182,8 @@ class PadMaker:
     def exclude_neighbours(self) -> None:
         """Neighbouring pads share the bridge, as their elements do; their contact is the hinge's
         limit (the closing cut), so their surfaces must not collide."""
-        prefix = self.names.prefix
         for j in range(1, self.names.n_segments):
-            self.spec.add_exclude(bodyname1=f"{prefix}_seg{j}_padbody", bodyname2=f"{prefix}_seg{j + 1}_padbody")
+            self.spec.add_exclude(bodyname1=self.names.pad_body(j), bodyname2=self.names.pad_body(j + 1))
 
 
 def add_pad_meshes(spec: mujoco.MjSpec, drive) -> None:

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 import mujoco
 import numpy as np
@@ -28,6 +28,7 @@ from gripper.core.params import GripperParams
 from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
 from gripper.drives.cable.finger import GUIDE_DEPTH
 from gripper.references.finger_mesh import FingerMesh, MeshResolution, finger_mesh
+from gripper.references.relaxation import with_rest_points
 from gripper.sim.stability import SimulationUnstable, check_stable
 
 PAPER_DURATION = 2.0  # s, paper 000 §IV
@@ -397,8 +398,6 @@ def run_reference(params: GripperParams | None = None,
     ref = ReferenceFinger(params, config)
     if not at_rest:
         return run_bending_record(ref)
-    from gripper.references.continuum_checks import relaxation_config, with_rest_points
-
     snaps: list = []
     record = run_bending_record(ref, snaps)
     relax = relaxation_config(ref.cfg)
@@ -460,6 +459,20 @@ def run_bending_record(ref: ReferenceFinger, snapshots: list | None = None) -> B
     )
 
 
-__all__ = ["BendingRecord", "ReferenceConfig", "ReferenceFinger", "SimulationUnstable",
-           "run_bending_record",
-           "plateau_indices", "run_reference", "tension_schedule"]
+
+def rest_config(mesh: MeshResolution) -> ReferenceConfig:
+    """A configuration that comes to rest for static checks: 5 ms implicit steps, the first mode
+    critically damped. The solve keeps a 1e-6 tolerance: at 5 ms steps it is ill-conditioned
+    (see ReferenceConfig)."""
+    return ReferenceConfig(mesh=mesh, timestep=5e-3, damping_ratio=1.0, solver_tolerance=1e-6,
+                           solver_iterations=20000)
+
+
+def relaxation_config(cfg: ReferenceConfig) -> ReferenceConfig:
+    """``cfg`` (its mesh, correction, clamp) with the relaxation's step, damping and solve."""
+    return replace(rest_config(cfg.mesh), modulus_factor=cfg.modulus_factor, clamp_length=cfg.clamp_length,
+                   tension_max=cfg.tension_max, mesh_mode_damping=cfg.mesh_mode_damping)
+
+
+__all__ = ["BendingRecord", "ReferenceConfig", "ReferenceFinger", "SimulationUnstable", "plateau_indices",
+           "relaxation_config", "rest_config", "run_bending_record", "run_reference", "tension_schedule"]

@@ -1,7 +1,7 @@
 """Checks of the continuum reference against things it did not compute itself: a uniform bar
 meshed the same way against the closed-form end-moment curvature (linear tetrahedra lock in
 bending; the default split keeps that small), and the static bend of the finger relaxed to rest
-(the mesh-convergence figure). Measured in ``scripts/bench_calibration.py``.
+(the mesh-convergence figure). Measured in ``scripts/benchmarks/bench_calibration.py``.
 
 Example:
     >>> from gripper.references.continuum_checks import beam_end_moment_check
@@ -18,23 +18,10 @@ import mujoco
 import numpy as np
 
 from gripper.core.params import GripperParams
-from gripper.references.continuum import (
-    ReferenceConfig,
-    ReferenceFinger,
-)
+from gripper.references.continuum import ReferenceFinger, rest_config
 from gripper.references.finger_mesh import MeshResolution
-from gripper.sim.stability import SimulationUnstable, check_stable
-
-# deg: a static point is at rest when its bending angle moves less than this over half a second
-# of the relaxation (0.02°: a fiftieth of the fit's 1° angle scale; static_bend's default)
-REST_TOL_DEG = 0.02
-
-
-def _relaxation_config(mesh: MeshResolution) -> ReferenceConfig:
-    """5 ms implicit steps, first mode critically damped: comes to rest for static checks. The
-    solve keeps a 1e-6 tolerance: at 5 ms steps it is ill-conditioned (see ReferenceConfig)."""
-    return ReferenceConfig(mesh=mesh, timestep=5e-3, damping_ratio=1.0, solver_tolerance=1e-6,
-                           solver_iterations=20000)
+from gripper.references.relaxation import relax_to_rest
+from gripper.sim.stability import check_stable
 
 
 def beam_end_moment_check(params: GripperParams | None = None,
@@ -71,7 +58,7 @@ def beam_end_moment_check(params: GripperParams | None = None,
     if material is not None:
         p = replace(p, material=material.validate())
     res = replace(mesh or MeshResolution(), uniform=True)
-    cfg = _relaxation_config(res)
+    cfg = rest_config(res)
     ref = ReferenceFinger(p, cfg)
     m, d = ref.model, ref.data
     g, mat = p.finger, p.material
@@ -142,7 +129,7 @@ def static_bend(params: GripperParams | None = None, mesh: MeshResolution | None
         SimulationUnstable: MuJoCo warned or the state became non-finite, or the finger did
             not come to rest within ``max_time``.
     """
-    cfg = replace(_relaxation_config(mesh or MeshResolution()), damping_ratio=damping_ratio)
+    cfg = replace(rest_config(mesh or MeshResolution()), damping_ratio=damping_ratio)
     ref = ReferenceFinger(params, cfg)
     t0 = time.perf_counter()
     angles, tip, _ = relax_to_rest(ref, tension, ramp_time=ramp_time, rest_tol_deg=rest_tol_deg,
@@ -154,85 +141,4 @@ def static_bend(params: GripperParams | None = None, mesh: MeshResolution | None
             "wall_time_s": time.perf_counter() - t0, "max_speed": float(np.abs(d.qvel).max())}
 
 
-def relax_to_rest(ref: ReferenceFinger, tension: float, *, ramp_time: float = 0.0, rest_tol_deg: float = 0.02,
-                  max_time: float = 20.0, chunk_time: float = 0.5, what: str = "relaxation"
-                  ) -> tuple[np.ndarray, np.ndarray, float]:
-    """Hold the cable at ``tension`` [N] (ramped over ``ramp_time`` [s] from the data's start)
-    until the bending angle moves less than ``rest_tol_deg`` over a ``chunk_time`` chunk: the
-    static point's own residual. ``ref`` should be built with a relaxation config (large
-    implicit steps, the first mode damped); its data may start anywhere (a snapshot).
-
-    Returns:
-        (element angles [rad], tip x, z [m], the bending angle's move over the last chunk [deg]).
-
-    Raises:
-        SimulationUnstable: MuJoCo warned, the state became non-finite, or no rest within
-            ``max_time`` of simulated time.
-    """
-    m, d = ref.model, ref.data
-    chunk = max(1, int(round(chunk_time / m.opt.timestep)))
-    t_start = float(d.time)
-    previous = None
-    while True:
-        for _ in range(chunk):
-            ramp = min(1.0, (d.time - t_start) / ramp_time) if ramp_time > 0 else 1.0
-            ref.apply_cable(tension * ramp, ref.node_positions())
-            mujoco.mj_step(m, d)
-        check_stable(m, d, what)
-        angles, tip = ref.measure(ref.node_positions())
-        bend = math.degrees(angles[-1] - angles[0])
-        elapsed = float(d.time) - t_start
-        if elapsed > ramp_time and previous is not None and abs(bend - previous) < rest_tol_deg:
-            return angles, tip, abs(bend - previous)
-        if elapsed >= max_time:
-            moved = abs(bend - previous) if previous is not None else float("nan")
-            raise SimulationUnstable(f"{what}: not at rest after {max_time} s "
-                                     f"(bending still moves {moved:.3f}° per {chunk_time} s)")
-        previous = bend
-
-
-def rest_points(make_ref, record, snapshots: list[np.ndarray], *, rest_tol_deg: float = REST_TOL_DEG
-                ) -> dict[str, np.ndarray]:
-    """The reference's static points at rest: each level's end-of-hold state (``snapshots``:
-    qpos at ``record.static``) relaxed at its tension until its own residual is below
-    ``rest_tol_deg`` (:func:`relax_to_rest`). ``make_ref``: builds the reference finger (the
-    continuum body or the flexible multibody model) for a :class:`ReferenceConfig`; the
-    relaxation uses the record's mesh and correction with 5 ms implicit steps, the first mode
-    critically damped.
-
-    Returns:
-        ``element_angles_deg`` (k, n), ``tip_xz_m`` (k, 2), ``moved_deg`` (k,): the bending
-        angle's move over the last half second, the residual each point was accepted at.
-    """
-    angles, tips, moved = [], [], []
-    for snap, j in zip(snapshots, record.static, strict=True):
-        ref = make_ref()
-        d = ref.data
-        d.qpos[:] = snap
-        d.qvel[:] = 0.0
-        mujoco.mj_forward(ref.model, d)
-        a, tip, mv = relax_to_rest(ref, float(record.tension_N[j]), rest_tol_deg=rest_tol_deg,
-                                   what=f"static point at {record.tension_N[j]:.3g} N")
-        angles.append(np.degrees(a))
-        tips.append(tip)
-        moved.append(mv)
-    return {"element_angles_deg": np.array(angles), "tip_xz_m": np.array(tips), "moved_deg": np.array(moved)}
-
-
-def with_rest_points(record, make_ref, snapshots: list[np.ndarray], *, rest_tol_deg: float = REST_TOL_DEG):
-    """``record`` with its static points at rest (:func:`rest_points`) and the relaxations'
-    wall time added to its own."""
-    t0 = time.perf_counter()
-    rest = rest_points(make_ref, record, snapshots, rest_tol_deg=rest_tol_deg)
-    return replace(record, rest_element_angles_deg=rest["element_angles_deg"], rest_tip_xz_m=rest["tip_xz_m"],
-                   rest_moved_deg=rest["moved_deg"], wall_time_s=record.wall_time_s + time.perf_counter() - t0)
-
-
-def relaxation_config(cfg: ReferenceConfig) -> ReferenceConfig:
-    """``cfg`` (its mesh, correction, clamp) with the relaxation's step, damping and solve."""
-    return replace(_relaxation_config(cfg.mesh), modulus_factor=cfg.modulus_factor, clamp_length=cfg.clamp_length,
-                   tension_max=cfg.tension_max, mesh_mode_damping=cfg.mesh_mode_damping)
-
-
-__all__ = ["REST_TOL_DEG", "beam_end_moment_check", "relax_to_rest", "relaxation_config", "rest_points",
-           "static_bend", "with_rest_points"]
+__all__ = ["beam_end_moment_check", "static_bend"]

@@ -307,7 +307,8 @@ def run_fmbs(params: GripperParams | None = None, config: ReferenceConfig | None
     cfg = config or ReferenceConfig(tension_max=fmbs_tension_max(p, f))
     if not at_rest:
         return run_bending_record(FmbsFinger(p, cfg, f))
-    from gripper.references.continuum_checks import relaxation_config, with_rest_points
+    from gripper.references.continuum import relaxation_config
+    from gripper.references.relaxation import with_rest_points
 
     snaps: list = []
     record = run_bending_record(FmbsFinger(p, cfg, f), snaps)

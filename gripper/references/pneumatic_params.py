@@ -26,7 +26,7 @@ import math
 from dataclasses import dataclass
 
 from gripper.core.fields import Validated, param
-from gripper.core.params import RTV230_YEOH, RTV230_YEOH_SOURCE
+from gripper.core.params import PAPER_001_PRESSURE_MAX, RTV230_YEOH, RTV230_YEOH_SOURCE
 
 KPA = 1e3  # Pa
 # The built actuator's neutral layer (paper 001 §3, Fig. 17): a1 = a2 = a3 = 40 mm, b1 = 5 mm, b2 = 15 mm
@@ -76,7 +76,7 @@ class PneumaticActuator(Validated):
     fibre_poisson: float = param(0.36, "-", gt=-1, lt=0.5, source="paper 001 §2.3 Step 2: 0.36")
     fibre_density: float = param(1201.0, "kg/m³", gt=0, source="paper 001 §2.3 Step 2: 1201 kg/m³")
     # load
-    pressure_max: float = param(250 * KPA, "Pa", gt=0, le=1e6, source="paper 001 §2.3 Step 3: 0-250 kPa")
+    pressure_max: float = param(PAPER_001_PRESSURE_MAX, "Pa", gt=0, le=1e6, source="paper 001 §2.3 Step 3: 0-250 kPa")
 
     def check(self) -> None:
         if len(self.segment_gaps) != len(self.segment_lengths) - 1:

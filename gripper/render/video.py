@@ -45,7 +45,7 @@ class FrameRecorder:
         drive = probe.drive
         self.label, self.format = drive.effort_label, drive.effort_format
         self.tension_adr = probe.effort_adr
-        self.scale = probe.effort_scale * drive.effort_display_scale
+        self.scale = drive.effort_display_scale / probe.effort_divisor
         self._next = 0.0
 
     def add(self, phase: str, states: np.ndarray, sensordata: np.ndarray) -> None:

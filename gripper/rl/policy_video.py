@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from gripper.envs.registration import MAX_EPISODE_STEPS
 from gripper.render.renderer import check_view
 from gripper.render.video import ProgressLines, check_output_path, overlay_lines, write_video
 
@@ -51,7 +52,7 @@ def record_policy_video(act: Callable[[np.ndarray], np.ndarray], env_kwargs: dic
         u = env.unwrapped
         i_h = u.observation_structure["palm_height"][0]
         to_m = float(u.observation_divisor[i_h])  # the observation's palm height in SI units
-        max_steps = getattr(env.spec, "max_episode_steps", None) or 300
+        max_steps = getattr(env.spec, "max_episode_steps", None) or MAX_EPISODE_STEPS
         say(f"running the policy (seed {seed}) and rendering up to {max_steps + 1} frames "
             f"({width}x{height}, camera {camera}) ...")
         progress = ProgressLines(say, max_steps + 1)

@@ -57,8 +57,8 @@ class ObjectProbe:
             name = m.body(m.geom_bodyid[g]).name
             if name == OBJECT_BODY or name.startswith(CONTENTS_BODY):
                 self.object_geom[g] = True
-        # each finger's true effort (cable tension [N], chamber pressure [Pa], ...): sensor x factor
-        self.effort_adr, self.effort_scale = self.drive.effort_sensors(m)
+        # each finger's true effort (cable tension [N], chamber pressure [Pa], ...): sensor / divisor
+        self.effort_adr, self.effort_divisor = self.drive.effort_sensors(m)
         self.flex = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_FLEX, OBJECT_BODY) if self.obj.is_flex else -1
         if self.flex >= 0:
             a, n = m.flex_vertadr[self.flex], m.flex_vertnum[self.flex]
@@ -174,7 +174,7 @@ class PeakRecorder:
         per_finger = self.probe.finger_forces(d)
         self.peak_finger = np.maximum(self.peak_finger, per_finger)
         self.peak_total = max(self.peak_total, float(per_finger.sum()))
-        effort = sensordata[:, self.probe.effort_adr] * self.probe.effort_scale
+        effort = sensordata[:, self.probe.effort_adr] / self.probe.effort_divisor
         self.peak_effort = max(self.peak_effort, float(effort.max()))
         if self.probe.obj.kind not in STRAIN_DAMAGE_KINDS:
             return

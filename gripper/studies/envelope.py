@@ -28,15 +28,8 @@ from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import read_user_data
 from gripper.drives import drive_for
 from gripper.experiments.protocol import GRIP_TENSION, GraspProtocol, TrialNoise
-from gripper.objects.grasp_object import GraspObject
+from gripper.objects.envelope_objects import HELD_FRACTION, SHAPES, envelope_object
 
-SHAPES = {"sphere": "rigid_sphere", "cylinder": "rigid_cylinder", "box": "rigid_box"}
-# Height of the envelope's cylinders and boxes [m]: the library block's and cylinder's 60-70 mm
-# class, so that the palm stands where it does for them (grasp height: fingertips 8 mm above
-# the floor, palm 10 mm above the top).
-ENVELOPE_HEIGHT = 0.060
-# A point is held when at least this fraction of its trials succeed.
-HELD_FRACTION = 2 / 3
 KEYS = ("shapes", "sizes", "masses", "frictions", "trials", "seed", "grip_tension", "grip_pressure")
 
 
@@ -104,16 +97,6 @@ class Envelope:
 
     def hash(self) -> str:
         return stable_hash([self.identity()])
-
-
-def envelope_object(shape: str, size: float, mass: float, friction: float) -> GraspObject:
-    """The rigid object of one envelope point (``size``: the width [m])."""
-    r = 0.5 * size
-    half = (r, r, r) if shape == "sphere" else (r, r, 0.5 * ENVELOPE_HEIGHT)
-    name = f"{shape}-{size * 1e3:g}mm-{mass * 1e3:g}g-mu{friction:g}"
-    return GraspObject(name=name, kind=SHAPES[shape], size=half, mass=mass, friction=friction,
-                       yaw_symmetric=shape != "box", close_command=3.0, damage="none", damage_limit=0.0,
-                       oversize=True).validate()
 
 
 def load_envelope(path: str | Path, **overrides) -> Envelope:

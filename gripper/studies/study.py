@@ -19,7 +19,7 @@ from gripper.bench.defaults import DEFAULT_WORKERS
 from gripper.core.atomic import write_csv_atomic, write_text_atomic
 from gripper.experiments.actuator_responses import inflation_response
 from gripper.experiments.design_responses import measure_responses
-from gripper.studies.study_file import ActuatorDesign, Study, apply_point, get_dotted, metric_names
+from gripper.studies.study_file import ActuatorDesign, Study, apply_point, metric_names
 
 
 def run_point(study: Study, index: int, changes: dict) -> dict:
@@ -34,7 +34,9 @@ def run_point(study: Study, index: int, changes: dict) -> dict:
         if isinstance(p, ActuatorDesign):
             rec["metrics"], rec["curves"] = inflation_response(p.actuator, study.responses["inflation"])
         else:
-            rec["metrics"], rec["curves"] = measure_responses(p, study.responses, study.seed)
+            protocol, placement = study.trial_setup(changes)
+            rec["metrics"], rec["curves"] = measure_responses(p, study.responses, study.seed, protocol=protocol,
+                                                              placement=placement)
     except Exception as e:  # a failing point is recorded and the study goes on
         rec.update(status="error", error=f"{type(e).__name__}: {e}")
     rec["wall_time_s"] = time.perf_counter() - t0
@@ -68,13 +70,30 @@ def run_study(study: Study, out: str | Path, *, workers: int = DEFAULT_WORKERS, 
     return records
 
 
+def _shown(key: str, v):
+    """A varied value in the table: a mesh resolution as ``NXxNYxNZ``, another list's first entry."""
+    if key == "object.mesh_points":
+        return "x".join(str(int(x)) for x in v) if v else "default"
+    return v[0] if isinstance(v, tuple | list) else v
+
+
+def _numeric(v) -> float | None:
+    """A varied value on a plot's axis: a mesh resolution by its point count (None: the objects'
+    own resolutions, which have no one count)."""
+    if v is None:
+        return None
+    if isinstance(v, tuple | list):
+        return float(v[0] * v[1] * v[2])
+    return float(v)
+
+
 def write_table(records: list[dict], study: Study, path: Path) -> None:
     """Tidy CSV: one row per point and metric, with the varied parameters as columns."""
     keys = list(study.vary)
     rows = []
     for r in records:
-        vals = [r["changes"].get(k, get_dotted(study.base, k)) for k in keys]
-        vals = [v[0] if isinstance(v, tuple | list) else v for v in vals]
+        vals = [r["changes"].get(k, study.value(k)) for k in keys]
+        vals = [_shown(k, v) for k, v in zip(keys, vals, strict=True)]
         if r["status"] != "ok":
             rows.append([r["point"], *vals, "error", "", "", "", r.get("error", "")])
             continue
@@ -86,14 +105,16 @@ def _series(records: list[dict], study: Study, key: str) -> list[tuple[float, di
     """(value of ``key``, record) of the points that show the effect of ``key``: the base plus
     the points varying only ``key`` (one-at-a-time), or every point (factorial, hypercube)."""
     out = []
-    base_value = get_dotted(study.base, key)
+    base_value = study.value(key)
     base_value = base_value[0] if isinstance(base_value, tuple) else base_value
     for r in records:
         if r["status"] != "ok":
             continue
         if study.design == "one_at_a_time" and set(r["changes"]) - {key}:
             continue
-        out.append((float(r["changes"].get(key, base_value)), r))
+        x = _numeric(r["changes"].get(key, base_value))
+        if x is not None:
+            out.append((x, r))
     return sorted(out, key=lambda vr: vr[0])
 
 

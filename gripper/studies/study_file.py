@@ -2,6 +2,16 @@
 responses (format in ``docs/studies.md``), read and checked once, and each design point's
 parameters, with hinge springs that follow the design (:func:`apply_point`).
 
+Besides the design's parameters (``finger.cut_angle_deg``, ``actuation.kind``, ...), a gripper
+study may fix or vary how its trials are run: ``protocol.<field>`` (a
+:class:`gripper.experiments.protocol.GraspProtocol` field: the grip set-point, the time step, the
+approach, ...), ``placement.mass_scale`` / ``placement.friction_scale`` (the object's mass and
+friction coefficient scaled in every trial, in place of the sampled scatter:
+:class:`gripper.objects.scene_objects.Placement`) and ``object.mesh_points`` (the deformable
+objects' mesh resolution, three whole numbers, for a mesh-convergence study; the objects keep
+their names, so their trials keep their placements). A point that changes ``protocol.timestep``
+keeps the control period (``chunk_steps`` follows) unless it sets ``protocol.chunk_steps`` too.
+
 Example:
     >>> from gripper.studies.study_file import load_study
     >>> load_study("one_at_a_time").design
@@ -24,7 +34,9 @@ from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import read_user_text
-from gripper.drives import drive_class
+from gripper.drives import drive_class, drive_for
+from gripper.experiments.protocol import GraspProtocol
+from gripper.objects.envelope_objects import SHAPES
 from gripper.references.pneumatic_params import PneumaticActuator
 
 DESIGNS = ("one_at_a_time", "factorial", "latin_hypercube")
@@ -34,12 +46,17 @@ RESPONSES: dict[str, dict[str, type]] = {
     "tension_for_angle": {"angle_deg": float},
     "blocked_force": {"r": float},
     "grasp": {"objects": list, "trials": int},
+    "holding_force": {"objects": list, "trials": int},
+    # the capability envelope on one grid (gripper.objects.envelope_objects): per shape, the
+    # smallest and largest width held (at HELD_FRACTION of its trials)
+    "envelope": {"shapes": list, "sizes": list, "mass": float, "friction": float, "trials": int},
     "inflation": {"pressure_max": float, "steps": int, "refinement": int},
 }
 # upper bounds of response options: the actuator model's pressure range (PneumaticActuator.pressure_max's
 # bound), load steps, and the finest mesh that fits this machine's memory (refinement 8: ~600k unknowns)
 RESPONSE_LIMITS = {"inflation": {"pressure_max": 1e6, "steps": 100, "refinement": 8}}
-MODEL_RESPONSES = {"gripper": ("bending", "tension_for_angle", "blocked_force", "grasp"), "actuator": ("inflation",)}
+MODEL_RESPONSES = {"gripper": ("bending", "tension_for_angle", "blocked_force", "grasp", "holding_force", "envelope"),
+                   "actuator": ("inflation",)}
 
 
 @dataclass(frozen=True)
@@ -83,6 +100,30 @@ class Study:
     seed: int = 0
     source: str = ""
     lines: dict = field(default_factory=dict, compare=False)
+    protocol: GraspProtocol = field(default_factory=GraspProtocol)  # the trials' fixed protocol
+    placement: dict = field(default_factory=dict)  # fixed placement scales, e.g. {"friction_scale": 0.5}
+
+    def value(self, key: str):
+        """The base value of a varied key: a design parameter, or a trial setting."""
+        section, _, name = key.partition(".")
+        if section == "protocol":
+            return getattr(self.protocol, name)
+        if key == "object.mesh_points":
+            return self.placement.get("mesh_points")
+        if section == "placement":
+            return self.placement.get(name, 1.0)
+        return get_dotted(self.base, key)
+
+    def trial_setup(self, changes: dict) -> tuple[GraspProtocol, dict]:
+        """The protocol and the placement scales of a point with ``changes`` (see the module)."""
+        proto = self.protocol
+        edits = {k.partition(".")[2]: v for k, v in changes.items() if k.startswith("protocol.")}
+        if "timestep" in edits and "chunk_steps" not in edits:
+            edits["chunk_steps"] = max(1, round(proto.chunk_steps * proto.timestep / edits["timestep"]))
+        proto = dataclasses.replace(proto, **edits).validate() if edits else proto
+        placement = {**self.placement,
+                     **{k.partition(".")[2]: v for k, v in changes.items() if k in PLACEMENT_KEYS}}
+        return proto, placement
 
     def design_points(self) -> list[dict]:
         """The parameter changes of every point, in a fixed order (point 0 is the base)."""
@@ -103,7 +144,7 @@ class Study:
                 for k, x in zip(keys, row, strict=True):
                     lo, hi = self.vary[k]["min"], self.vary[k]["max"]
                     v = lo + x * (hi - lo)
-                    pt[k] = int(round(v)) if isinstance(get_dotted(self.base, k), int) else float(v)
+                    pt[k] = int(round(v)) if isinstance(self.value(k), int) else float(v)
                 pts.append(pt)
         return pts
 
@@ -113,8 +154,10 @@ class Study:
         return {"versions": {k: v for k, v in versions().items() if k in ("gripper", "mujoco")},
                 "name": self.name, "base": self.base.to_dict(), "design": self.design, "vary": self.vary,
                 "responses": self.responses, "objective": self.objective, "limits": self.limits,
-                "points": self.points,
-                "seed": self.seed}
+                "points": self.points, "seed": self.seed,
+                # the trials' settings, where a study sets them (absent: the defaults, as before 0.18.0)
+                **({"protocol": self.protocol.to_dict()} if self.protocol != GraspProtocol() else {}),
+                **({"placement": self.placement} if self.placement else {})}
 
     def hash(self) -> str:
                 return stable_hash([self.identity()])
@@ -136,6 +179,17 @@ def _key_line(text: str, key: str) -> int:
                 return i
     header = re.compile(r"^\s*\[\s*" + re.escape(key.split(".")[0]) + r"\s*\]")
     return next((i for i, line in enumerate(lines, 1) if header.match(line)), 0)
+
+
+PLACEMENT_KEYS = ("placement.mass_scale", "placement.friction_scale", "object.mesh_points")
+
+
+def is_trial_key(key: str) -> bool:
+    """Whether ``key`` names a trial setting (``protocol.<field>``, ``placement.<scale>``)."""
+    section, _, name = key.partition(".")
+    if section == "protocol":
+        return name in {f.name for f in dataclasses.fields(GraspProtocol)}
+    return key in PLACEMENT_KEYS
 
 
 def _has_param(p, key: str) -> bool:
@@ -165,6 +219,7 @@ def apply_point(base, changes: dict) -> tuple:
     stiffness ratio (and the exact E ratio): calibrated on the continuum reference. Otherwise
     the bridge-beam rule sets them and the point is marked not calibrated, with the reason.
     """
+    changes = {k: v for k, v in changes.items() if not is_trial_key(k)}
     p = base
     for key, value in changes.items():
         p = _replace_dotted(p, key, value)
@@ -295,7 +350,17 @@ def load_study(path: str | Path) -> Study:
         raise err("seed", f"must be an integer, got {seed!r}")
     if design == "latin_hypercube" and (not isinstance(points, int) or not 1 <= points <= 100_000):
         raise err("points", f"must be an integer in [1, 100000] for a latin_hypercube, got {points!r}")
+    protocol, placement = GraspProtocol(), {}
     for key, value in data.get("fixed", {}).items():
+        if model == "gripper" and is_trial_key(key):
+            try:
+                if key.startswith("protocol."):
+                    protocol = dataclasses.replace(protocol, **{key.partition(".")[2]: value}).validate()
+                else:
+                    placement[key.partition(".")[2]] = _scale(value)
+            except (ValueError, TypeError) as e:
+                raise err(key, str(e)) from None
+            continue
         if not _has_param(base, key):
             raise err(key, f"unknown parameter in [fixed]; use a dotted path of the {model}'s parameters")
         try:
@@ -306,12 +371,21 @@ def load_study(path: str | Path) -> Study:
     if not vary:
         raise err("vary", "give at least one parameter to vary")
     for key, spec in vary.items():
-        if not _has_param(base, key):
+        trial = model == "gripper" and is_trial_key(key)
+        if not trial and not _has_param(base, key):
             example = "actuator.cladding_thickness" if model == "actuator" else "finger.cut_angle_deg"
-            raise err(key, f"unknown parameter; use a dotted {model} parameter path such as {example}")
-        current = get_dotted(base, key)
+            raise err(key, f"unknown parameter; use a dotted {model} parameter path such as {example}, "
+                      + ("or a trial setting (protocol.<field>, placement.mass_scale, placement.friction_scale)"
+                         if model == "gripper" else ""))
+        current = (getattr(protocol, key.partition(".")[2]) if key.startswith("protocol.")
+                   else (0, 0, 0) if key == "object.mesh_points"
+                   else placement.get(key.partition(".")[2], 1.0) if trial else get_dotted(base, key))
         want = int if isinstance(current, int) and not isinstance(current, bool) else (
             float if isinstance(current, float | tuple) else type(current))
+        if key == "object.mesh_points":  # three whole numbers per value
+            want = list
+            if design == "latin_hypercube":
+                raise err(key, "takes a list of [nx, ny, nz] values, not a latin_hypercube range")
         if design == "latin_hypercube":
             if not isinstance(spec, dict) or set(spec) != {"min", "max"}:
                 raise err(key, "needs a range { min = ..., max = ... } for a latin_hypercube")
@@ -352,7 +426,14 @@ def load_study(path: str | Path) -> Study:
                 raise err("responses." + name, f"{k} must be an integer >= 1, got {v!r}")
             if name in RESPONSE_LIMITS and k in RESPONSE_LIMITS[name] and v > RESPONSE_LIMITS[name][k]:
                 raise err("responses." + name, f"{k} must be at most {RESPONSE_LIMITS[name][k]:g}, got {v!r}")
-            if typ is list:
+            if typ is list and name == "envelope":
+                ok = isinstance(v, list) and bool(v) and (
+                    all(s in SHAPES for s in v) if k == "shapes" else
+                    all(isinstance(x, int | float) and not isinstance(x, bool) and 0 < x <= 0.3 for x in v))
+                if not ok:
+                    allowed = f"shapes of {', '.join(SHAPES)}" if k == "shapes" else "widths in (0, 0.3] m"
+                    raise err("responses." + name, f"{k} must be a non-empty list of {allowed}, got {v!r}")
+            elif typ is list:
                 from gripper.objects.library import get_object
                 if not isinstance(v, list) or not v:
                     raise err("responses." + name, f"{k} must be a non-empty list of object names")
@@ -380,10 +461,18 @@ def load_study(path: str | Path) -> Study:
         objective = (sense, str(metric))
     study = Study(name=str(st.get("name", path.stem)), base=base, design=design, vary=vary, responses=responses,
                   objective=objective, points=points, seed=seed, source=str(path),
-                  limits=tuple((b, k, v) for (b, k), v in limits.items()))
+                  limits=tuple((b, k, v) for (b, k), v in limits.items()), protocol=protocol, placement=placement)
     for pt in study.design_points():  # every point must build before any work starts
         try:
-            apply_point(base, pt)
+            p, _ = apply_point(base, pt)
+            proto, scales = study.trial_setup(pt)
+            for k, v in scales.items():
+                if k == "mesh_points":
+                    _mesh_points(v, responses)
+                else:
+                    _scale(v, f"placement.{k}")
+            if isinstance(p, GripperParams) and ("grasp" in responses or "holding_force" in responses):
+                drive_for(p).check_set_point(proto)
         except ValueError as e:
             key = next(iter(pt)) if pt else "base"
             raise err(key, f"value {pt.get(key)!r} gives an invalid design ({e})") from None
@@ -391,6 +480,30 @@ def load_study(path: str | Path) -> Study:
         raise err(f"objective.{objective[0]}",
                   f"unknown metric {objective[1]!r}; available: {', '.join(metric_names(responses))}")
     return study
+
+
+def _mesh_points(value, responses: dict) -> tuple[int, int, int]:
+    """``object.mesh_points`` on every deformable object of the responses (raises naming it)."""
+    from gripper.objects.library import get_object
+
+    pts = tuple(value) if isinstance(value, list | tuple) else value
+    meshed = 0
+    for name in ("grasp", "holding_force"):
+        for spec in responses.get(name, {}).get("objects", ["block"]):
+            obj = get_object(spec)
+            if obj.is_flex:
+                dataclasses.replace(obj, mesh_points=pts).validate()
+                meshed += 1
+    if not meshed:
+        raise ValueError("object.mesh_points: the responses grasp no deformable object (balloon, paper_box, bag, "
+                         "...) whose mesh it could set")
+    return pts
+
+
+def _scale(value, key: str = "placement") -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{key}: a scale must be a number > 0, got {value!r}")
+    return float(value)
 
 
 def metric_names(responses: dict) -> list[str]:
@@ -409,4 +522,12 @@ def metric_names(responses: dict) -> list[str]:
         for o in responses["grasp"].get("objects", ["block"]):
             name = get_object(o).name  # an object file's own name, not its path
             names += [f"grasp_{name}_success_rate", f"grasp_{name}_median_peak_force_N"]
+    if "envelope" in responses:
+        for shape in responses["envelope"].get("shapes", list(SHAPES)):
+            names += [f"envelope_{shape}_smallest_m", f"envelope_{shape}_largest_m"]
+    if "holding_force" in responses:
+        from gripper.objects.library import get_object
+
+        for o in responses["holding_force"].get("objects", ["block"]):
+            names += [f"holding_{get_object(o).name}_median_force_N"]
     return names

@@ -20,6 +20,7 @@ from mujoco import rollout
 from gripper.core.params import GripperParams
 from gripper.experiments.bending import BendingConfig, run_bending_test
 from gripper.experiments.protocol import GraspProtocol
+from gripper.experiments.smoke import open_loop_grasp_controls
 from gripper.experiments.trial import run_trial
 from gripper.model.builders import build_scene_spec
 from gripper.sim.scene import grasp_scene_spec
@@ -30,21 +31,11 @@ def _scene(p: GripperParams, discrete: bool) -> mujoco.MjModel:
     return (grasp_scene_spec(p, with_object=True) if discrete else build_scene_spec(p)).compile()
 
 
-def _scripted_controls(p: GripperParams, m: mujoco.MjModel, sim_time: float) -> np.ndarray:
-    """Descend for 1 s, close the servos to 2 rad over 0.5 s, lift by 0.1 m at 2.2 s: (n, nu)."""
-    n = int(round(sim_time / m.opt.timestep))
-    t = np.arange(n) * m.opt.timestep
-    u = np.zeros((n, m.nu))
-    u[:, : p.layout.n_fingers] = (np.clip((t - 1.0) * 2.0, 0.0, 1.0) * 2.0)[:, None]
-    u[:, m.actuator("lift_z").id] = -0.12 * np.minimum(1.0, t) + np.where(t > 2.2, 0.1, 0.0)
-    return u
-
-
 def grasp_rollout(p: GripperParams, sim_time: float = 3.0, discrete: bool = False) -> float:
     """Real-time factor of the scripted grasp with ``mj_step`` called from Python."""
     m = _scene(p, discrete)
     d = mujoco.MjData(m)
-    u = _scripted_controls(p, m, sim_time)
+    u = open_loop_grasp_controls(p, m, sim_time)
     t0 = time.perf_counter()
     for row in u:
         d.ctrl[:] = row
@@ -57,7 +48,7 @@ def grasp_rollout_batch(p: GripperParams, sim_time: float = 3.0, discrete: bool 
     path the grasp trials and environments take): no Python between steps."""
     m = _scene(p, discrete)
     d = mujoco.MjData(m)
-    u = _scripted_controls(p, m, sim_time)[None]
+    u = open_loop_grasp_controls(p, m, sim_time)[None]
     spec_full = mujoco.mjtState.mjSTATE_FULLPHYSICS
     s0 = np.empty((1, mujoco.mj_stateSize(m, spec_full)))
     mujoco.mj_getState(m, d, s0[0], spec_full)
@@ -76,7 +67,7 @@ def phase_breakdown(p: GripperParams) -> None:
     """Where a step of the scripted grasp (2 ms, discrete) goes: MuJoCo's own timers, per step."""
     m = _scene(p, discrete=True)
     d = mujoco.MjData(m)
-    u = _scripted_controls(p, m, 3.0)
+    u = open_loop_grasp_controls(p, m, 3.0)
     ncon = nefc = iters = 0
     for row in u:
         d.ctrl[:] = row
@@ -154,7 +145,7 @@ def knob_sweep(p: GripperParams, repeats: int) -> None:
     for _ in range(repeats):  # interleaved, so drifts of the machine hit every variant alike
         for k, m in models.items():
             d = mujoco.MjData(m)
-            u = _scripted_controls(p, m, 3.0)
+            u = open_loop_grasp_controls(p, m, 3.0)
             t0 = time.perf_counter()
             for row in u:
                 d.ctrl[:] = row

@@ -17,7 +17,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from gripper.core.params import DEG, GripperParams
+from gripper.core.params import GripperParams
 from gripper.core.rounding import rounded_prism
 from gripper.datasheets.servo import ServoDatasheet
 from gripper.drives.cable.closure import teeth_closure_stiffness, tune_closure_limits
@@ -32,6 +32,7 @@ from gripper.drives.cable.finger import (
 )
 from gripper.drives.cable.geometry import ElementKind, element_kind, element_profile, element_vertices
 from gripper.drives.cable.sensing import ServoReading, ServoSensing, ServoSensor
+from gripper.drives.cable.servo import servo_gains
 from gripper.drives.drive import Drive
 from gripper.parts.names import FingerNames, finger_name
 from gripper.parts.pads import hull_vertices
@@ -56,7 +57,7 @@ class CableDrive(Drive):
     set_point_field = "grip_tension"
     set_point_record = "grip_tension_N"
     effort_label = "cable tension [N]"
-    responses = ("bending", "tension_for_angle", "blocked_force", "grasp")
+    responses = ("bending", "tension_for_angle", "blocked_force", "grasp", "holding_force", "envelope")
     state_observations = (("cable_shortening", "m"), ("cable_tension", "N"), ("servo_angle", "rad"),
                           ("servo_setpoint", "rad"))
     sensed_observations = (("sensed_servo_position", "rad"), ("sensed_servo_current", "A"),
@@ -171,7 +172,7 @@ class CableDrive(Drive):
         if protocol.policy != "controller":
             return None
         s = self.params.servo
-        kp, _ = s.datasheet.pd_gains(saturation_error=s.saturation_error_deg * DEG, damping_ratio=s.damping_ratio)
+        kp, _ = servo_gains(self.params)
         return GripController(m, self.actuator_ids(m), sensor, grip_tension=protocol.grip_tension,
                               close_rate=self.open_loop_rate(protocol), spool_radius=s.spool_radius, kp=kp)
 

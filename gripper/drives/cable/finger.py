@@ -95,14 +95,14 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
     stiff, damp, rest = p.springs.per_hinge(g.n_hinges)
     zc = cable_line_z(g, p.cable)
     mount = parent.add_body(name=names.mount, pos=list(pos), quat=list(quat))
-    mount.add_site(name=f"{prefix}_cable_guide", pos=[-GUIDE_DEPTH, 0, zc], size=[0.001] * 3)
+    mount.add_site(name=names.cable_guide, pos=[-GUIDE_DEPTH, 0, zc], size=[0.001] * 3)
     reel = mount.add_body(name=names.reel, pos=[-REEL_DEPTH, 0, zc])
     reel.add_geom(defaults["visual"], name=f"{prefix}_reel_drum", type=mujoco.mjtGeom.mjGEOM_SPHERE,
                   size=[0.003, 0, 0], mass=REEL_MASS, material="cable")
     reel.add_joint(name=names.reel, type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[-1, 0, 0],
                    limited=mujoco.mjtLimited.mjLIMITED_TRUE,
                    range=[-0.002, p.servo.datasheet.travel * p.servo.spool_radius + 0.002])
-    reel.add_site(name=f"{prefix}_reel_site", size=[0.001] * 3)
+    reel.add_site(name=names.reel_site, size=[0.001] * 3)
 
     # Upper end of each hinge's rigid stop tendon: the squashed teeth's lock, or out of reach.
     lock = (g.closure_angle_deg * DEG + teeth_lock_angle(g) if p.springs.closure == "teeth"
@@ -111,7 +111,7 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
     for i in range(g.n_segments):
         kind = element_kind(i, g.n_segments)
         j = i + 1
-        seg = body.add_body(name=f"{prefix}_seg{j}", pos=[g.pitch if i else 0.0, 0, 0])
+        seg = body.add_body(name=names.body(j), pos=[g.pitch if i else 0.0, 0, 0])
         if i > 0:
             # Neighbours share the bridge; their contact is the joint limit (cut closing), so
             # their convex hulls must not collide (MuJoCo's parent filter skips world-welded
@@ -122,7 +122,7 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
             # at its lower end, the squashed teeth's lock at its upper end (gripper.drives.cable.closure).
             # MuJoCo gives a joint limit one solref/solimp for both ends, and the cut's
             # compliant stop must not soften the extension stop.
-            hinge_name = f"{prefix}_hinge{j}"
+            hinge_name = names.hinge(j)
             seg.add_joint(defaults.get(f"hinge{j}", defaults["hinge"]), name=hinge_name, pos=[0, 0, g.hinge_z],
                           range=[-EXTENSION_JOINT_RANGE, g.closure_angle_deg * DEG],
                           stiffness=[stiff[i - 1], 0, 0], damping=[damp[i - 1], 0, 0],
@@ -131,20 +131,20 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
                                    range=[-g.extension_limit_deg * DEG, lock])
             stop.wrap_joint(hinge_name, 1.0)
             set_rigid_stop(stop, p)
-        seg.add_geom(defaults["visual"], name=f"{prefix}_seg{j}_visual",
+        seg.add_geom(defaults["visual"], name=names.visual(j),
                      type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}", material="silicone")
-        collision = seg.add_geom(defaults["collision"], name=f"{prefix}_seg{j}_collision",
+        collision = seg.add_geom(defaults["collision"], name=names.collision(j),
                                  type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}")
         prof = element_profile(g, kind)
         top = prof[np.isclose(prof[:, 1], g.height), 0]
         x0, x1 = float(top.min()), float(top.max())
         host = seg if pad is None else pad(seg, j, kind, collision, element_vertices(g, kind),
                                            (x1 - x0) * g.width)
-        host.add_site(defaults["pad"], name=f"{prefix}_seg{j}_pad",
+        host.add_site(defaults["pad"], name=names.pad(j),
                      pos=[0.5 * (x0 + x1), 0, g.height],
                      size=[0.5 * (x1 - x0), 0.5 * g.width, PAD_HALF_THICKNESS])
         for role, x in cable_via_points(g, p.cable, kind):
-            name = f"{prefix}_tip_anchor" if role == "anchor" else f"{prefix}_seg{j}_cable"
+            name = names.tip_anchor if role == "anchor" else names.cable_site(j)
             seg.add_site(name=name, pos=[x, 0, zc], size=[0.0008] * 3)
         if kind == "tip":
             seg.add_site(name=names.tip, pos=[g.pitch, 0, g.hinge_z], size=[0.001] * 3)
@@ -166,13 +166,12 @@ def add_cable_drive(spec: mujoco.MjSpec, p: GripperParams, names: FingerNames,
                           limited=mujoco.mjtLimited.mjLIMITED_TRUE,
                           range=[0.0, straight_cable_length(p)])
     ten.solimp_limit = list(CABLE_SOLIMP)
-    ten.wrap_site(f"{names.prefix}_reel_site")
-    ten.wrap_site(f"{names.prefix}_cable_guide")
+    ten.wrap_site(names.reel_site)
+    ten.wrap_site(names.cable_guide)
     for j in range(1, g.n_segments + 1):
         kind = element_kind(j - 1, g.n_segments)
         for role, _ in cable_via_points(g, p.cable, kind):
-            ten.wrap_site(f"{names.prefix}_tip_anchor" if role == "anchor"
-                          else f"{names.prefix}_seg{j}_cable")
+            ten.wrap_site(names.tip_anchor if role == "anchor" else names.cable_site(j))
 
     add_servo(spec, p, names.servo, names.reel, servo_class)
 

@@ -16,6 +16,13 @@ import mujoco
 from gripper.core.params import DEG, GripperParams
 
 
+def servo_gains(p: GripperParams) -> tuple[float, float]:
+    """The servo's position-loop gains (kp [N·m/rad], kd [N·m·s/rad]): its datasheet's PD at the
+    design's saturation error and damping ratio (the one place they are computed)."""
+    s = p.servo
+    return s.datasheet.pd_gains(saturation_error=s.saturation_error_deg * DEG, damping_ratio=s.damping_ratio)
+
+
 def set_dcmotor(act, p: GripperParams) -> None:
     """The servo as a MuJoCo ``dcmotor`` (on an actuator or the ``servo`` default class).
 
@@ -26,8 +33,7 @@ def set_dcmotor(act, p: GripperParams) -> None:
     contraction speed (``slewmax``); the reflected rotor inertia is the actuator armature.
     """
     ds = p.servo.datasheet
-    kp, kd = ds.pd_gains(saturation_error=p.servo.saturation_error_deg * DEG,
-                         damping_ratio=p.servo.damping_ratio)
+    kp, kd = servo_gains(p)
     act.set_to_dcmotor(motorconst=[0, 0], resistance=0,
                        nominal=[ds.voltage, ds.stall_torque, ds.no_load_speed],
                        controller=[kp, 0.0, kd, p.servo.slew_rate, 0.0, ds.voltage],

@@ -101,16 +101,15 @@ def add_pneumatic_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: Gripper
     on a compliant pad and returns the body its touch site goes on (``gripper.parts.pads.PadMaker``;
     None: the segment's own geom collides)."""
     pf = p.pneumatic
-    prefix = names.prefix
     lengths = segment_lengths(pf)
     damping = hinge_damping(pf)
     mount = parent.add_body(name=names.mount, pos=list(pos), quat=list(quat))
     body = mount
     for i, seg_len in enumerate(lengths):
         j = i + 1
-        seg = body.add_body(name=f"{prefix}_seg{j}", pos=[lengths[i - 1] if i else 0.0, 0, 0])
+        seg = body.add_body(name=names.body(j), pos=[lengths[i - 1] if i else 0.0, 0, 0])
         kind = "full" if 0 < i < len(lengths) - 1 else "half"
-        hinge = f"{prefix}_hinge{j}"
+        hinge = names.hinge(j)
         if i == 0:  # the root: the clamp's compliance, lumped
             seg.add_joint(defaults.get("root_hinge", defaults["hinge"]), name=hinge,
                           pos=[0, 0, pf.hinge_z], range=list(HINGE_RANGE),
@@ -124,12 +123,12 @@ def add_pneumatic_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: Gripper
                                     springlength=[-2.0 * math.pi, pf.knee_curvature * pf.pitch])
             stiff.wrap_joint(hinge, 1.0)
         mass = pf.mass * seg_len / pf.length
-        seg.add_geom(defaults["visual"], name=f"{prefix}_seg{j}_visual", type=mujoco.mjtGeom.mjGEOM_MESH,
+        seg.add_geom(defaults["visual"], name=names.visual(j), type=mujoco.mjtGeom.mjGEOM_MESH,
                      meshname=f"segment_{kind}", material="silicone")
-        collision = seg.add_geom(defaults["collision"], name=f"{prefix}_seg{j}_collision",
+        collision = seg.add_geom(defaults["collision"], name=names.collision(j),
                                  type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"segment_{kind}", mass=mass)
         host = seg if pad is None else pad(seg, j, kind, collision, segment_vertices(pf, seg_len), seg_len * pf.width)
-        host.add_site(defaults["pad"], name=f"{prefix}_seg{j}_pad", pos=[0.5 * seg_len, 0, pf.height],
+        host.add_site(defaults["pad"], name=names.pad(j), pos=[0.5 * seg_len, 0, pf.height],
                      size=[0.5 * seg_len, 0.5 * pf.width, 0.0025])
         if j == pf.n_segments:
             seg.add_site(name=names.tip, pos=[seg_len, 0, pf.hinge_z], size=[0.001] * 3)

@@ -138,7 +138,7 @@ class PneumaticDrive(Drive):
     def effort_sensors(self, m):
         n = self.params.layout.n_fingers
         adr = np.array([m.sensor_adr[m.sensor(f"{self.actuator_name(k)}_moment").id] for k in range(n)])
-        return adr, 1.0 / m.actuator_gainprm[self.actuator_ids(m), 0]
+        return adr, m.actuator_gainprm[self.actuator_ids(m), 0].copy()  # the moment over the gain
 
     def command_rate(self, protocol) -> float:
         """The protocol's pressure ramp [Pa/s]."""

@@ -1,26 +1,24 @@
-"""A bad-input campaign against the command line, as a new user's typos would run it.
+"""A bad-input campaign against the command line, as a new user's typos would run it (slow:
+``scripts/test.sh --slow``; it was ``scripts/bad_input_campaign.py`` until 0.17.0).
 
 Every command starts from a cheap valid argument list; one option at a time gets a bad value
 (out of range, not a number, empty, a path that cannot be written, a name that is too long or
 escapes its folder). Each case runs as its own process with a time limit and is classed:
 
 - ``refused``: exit 2 and one line on stderr, nothing new in the case's folder;
-- ``accepted``: exit 0 (listed, to be read: a value that is allowed, or a silent acceptance);
-- ``traceback``, ``hang``, ``other``: defects.
-
-Run: ``.venv/bin/python scripts/bad_input_campaign.py [--only COMMAND] [--jobs 2]``; prints
-the counts and every case that was not refused. Exit 1 if any case is a defect.
+- ``accepted``: exit 0 (a value that is allowed);
+- ``traceback``, ``hang``, ``other``: defects, which fail the case.
 """
 
 from __future__ import annotations
 
-import argparse
 import os
 import subprocess
 import sys
 import tempfile
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+
+import pytest
 
 GRIPPER = [sys.executable, "-m", "gripper.cli.main"]
 NUMBERS = ["-1", "0", "1e9", "nan", "inf", "-inf", "1e400", "abc", ""]
@@ -63,6 +61,7 @@ CASES = {
              {"--seed": NUMBERS, "--width": NUMBERS, "--height": NUMBERS, "--out": PATHS}),
 }
 ROOT = Path(__file__).resolve().parents[1]
+TIMEOUT = 120.0  # s per case: the slowest valid case (a calibration from bench data) takes about 40 s
 
 
 def _prepare(folder: Path) -> None:
@@ -104,16 +103,9 @@ def run_case(command: str, argv: list[str], timeout: float) -> tuple[str, str]:
         return "other", f"exit {done.returncode}: {err[-1] if err else ''}"
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--only", help="one command")
-    ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--timeout", type=float, default=120.0)
-    args = ap.parse_args()
+def _cases() -> list[tuple[str, list[str]]]:
     jobs = []
     for command, (base, options) in CASES.items():
-        if args.only and command != args.only:
-            continue
         for option, values in options.items():
             for value in values:
                 argv = list(base)
@@ -123,17 +115,12 @@ def main() -> int:
                 else:
                     argv += [option, value]
                 jobs.append((command, argv))
-    with ThreadPoolExecutor(args.jobs) as pool:
-        results = list(pool.map(lambda j: run_case(j[0], j[1], args.timeout), jobs))
-    counts: dict[str, int] = {}
-    for (command, argv), (kind, text) in zip(jobs, results, strict=True):
-        counts[kind] = counts.get(kind, 0) + 1
-        if kind != "refused":
-            shown = " ".join(a if len(a) < 40 else a[:20] + "..." for a in argv)
-            print(f"{kind:<10} gripper {command} {shown}\n           {text}")
-    print(", ".join(f"{k} {v}" for k, v in sorted(counts.items())), f"of {len(jobs)} cases")
-    return 1 if any(k in counts for k in ("traceback", "hang", "other")) else 0
+    return jobs
 
 
-if __name__ == "__main__":
-    sys.exit(main())
+@pytest.mark.slow
+@pytest.mark.parametrize(("command", "argv"), _cases(),
+                         ids=lambda v: v if isinstance(v, str) else " ".join(a[:20] for a in v))
+def test_a_bad_value_is_refused_or_allowed_never_a_defect(command, argv):
+    kind, text = run_case(command, argv, TIMEOUT)
+    assert kind in ("refused", "accepted"), f"{kind}: gripper {command} {' '.join(argv)}: {text}"

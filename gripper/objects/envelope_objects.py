@@ -1,0 +1,33 @@
+"""The capability envelope's test objects: rigid spheres, cylinders and square boxes of a given
+width, mass and friction coefficient (``gripper envelope`` and the study response ``envelope``).
+
+Example:
+    >>> from gripper.objects.envelope_objects import envelope_object
+    >>> envelope_object("cylinder", 0.03, 0.05, 0.6).size
+    (0.015, 0.015, 0.03)
+"""
+
+from __future__ import annotations
+
+from gripper.objects.grasp_object import GraspObject
+
+SHAPES = {"sphere": "rigid_sphere", "cylinder": "rigid_cylinder", "box": "rigid_box"}
+# Height of the envelope's cylinders and boxes [m]: the library block's and cylinder's 60-70 mm
+# class, so that the palm stands where it does for them (grasp height: fingertips 8 mm above
+# the floor, palm 10 mm above the top).
+ENVELOPE_HEIGHT = 0.060
+# A point is held when at least this fraction of its trials succeed.
+HELD_FRACTION = 2 / 3
+
+
+def envelope_object(shape: str, size: float, mass: float, friction: float) -> GraspObject:
+    """The rigid object of one envelope point (``size``: the width [m])."""
+    r = 0.5 * size
+    half = (r, r, r) if shape == "sphere" else (r, r, 0.5 * ENVELOPE_HEIGHT)
+    name = f"{shape}-{size * 1e3:g}mm-{mass * 1e3:g}g-mu{friction:g}"
+    return GraspObject(name=name, kind=SHAPES[shape], size=half, mass=mass, friction=friction,
+                       yaw_symmetric=shape != "box", close_command=3.0, damage="none", damage_limit=0.0,
+                       oversize=True).validate()
+
+
+__all__ = ["ENVELOPE_HEIGHT", "HELD_FRACTION", "SHAPES", "envelope_object"]
