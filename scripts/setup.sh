@@ -20,3 +20,10 @@ fi
 if [ ! -e .venv/bin/ffmpeg ]; then  # missing, or a link left dangling by an upgrade
   ln -sf "$(.venv/bin/python -c 'import imageio_ffmpeg; print(imageio_ffmpeg.get_ffmpeg_exe())')" .venv/bin/ffmpeg
 fi
+# ... and the environment's interpreter puts its own bin/ on PATH when it starts (a one-line
+# .pth file: Python runs it at start-up), so `.venv/bin/python -c "import mediapy; ..."` finds
+# that ffmpeg without activation too.
+site="$(.venv/bin/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+if [ ! -e "$site/gripper_venv_bin.pth" ]; then
+  echo 'import os, sys; b = os.path.dirname(sys.executable); p = os.environ.get("PATH", ""); os.environ["PATH"] = p if b in p.split(os.pathsep) else b + os.pathsep + p' > "$site/gripper_venv_bin.pth"
+fi

@@ -13,9 +13,9 @@ trap 'rm -f "$mypy_log"' EXIT
 .venv/bin/mypy >"$mypy_log" 2>&1 &
 mypy_pid=$!
 if [ "${1:-}" = "--slow" ]; then
-  .venv/bin/python -m pytest -q -m "slow or not slow"
+  .venv/bin/python -m pytest -q --durations=15 -m "slow or not slow"
 else
-  .venv/bin/python -m pytest -q
+  .venv/bin/python -m pytest -q --durations=15
 fi
 if ! wait "$mypy_pid"; then
   cat "$mypy_log" >&2

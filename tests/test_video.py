@@ -122,6 +122,19 @@ def test_the_activated_environment_reads_video_with_mediapy_alone(tmp_path):
     assert res.returncode == 0 and res.stdout.strip() == "5", res.stdout + res.stderr
 
 
+def test_the_environment_reads_video_with_mediapy_alone_without_activation(tmp_path):
+    """`.venv/bin/python -c "import mediapy; mediapy.read_video(...)"` with the environment not
+    activated (its bin/ not on PATH): the interpreter puts its bin/ there at start-up
+    (scripts/setup.sh's .pth line), so mediapy finds the ffmpeg link."""
+    from gripper.render.video import write_video
+    out = tmp_path / "own.mp4"
+    write_video(_synthetic_frames(n=5), out, fps=10)
+    env = {**os.environ, "PATH": "/usr/bin:/bin"}
+    code = "import sys, mediapy; print(len(mediapy.read_video(sys.argv[1])))"
+    res = subprocess.run([sys.executable, "-c", code, str(out)], capture_output=True, text=True, env=env, timeout=120)
+    assert res.returncode == 0 and res.stdout.strip() == "5", res.stdout + res.stderr
+
+
 def test_fixed_cameras_frame_the_gripper_from_home_to_hold():
     """"front" and "side" show the whole gripper below the overlay band and inside the picture:
     at its home height (first frame), at the end of the approach and lifted (first hold frame)."""

@@ -211,8 +211,12 @@ def summarize(records: Sequence[Mapping], cfg: BenchConfig, wall_time_s: float =
             "failed_phases": {ph: sum(1 for r in ok if r["failed_phase"] == ph)
                               for ph in ("lift", "hold", "shake", "damage")},
         }
+    drive = drive_for(cfg.params)
+    grip = (drive.format_set_point(drive.set_point(cfg.protocol)) if cfg.protocol.policy == "controller"
+            else "each object's own closing command")
     return {"objects": per, "config_hash": cfg.hash(), "versions": versions(),
-            "wall_time_s": wall_time_s, "resumed": resumed, "trials_per_object": cfg.trials, "seed": cfg.seed}
+            "wall_time_s": wall_time_s, "resumed": resumed, "trials_per_object": cfg.trials, "seed": cfg.seed,
+            "gripper": drive.model_name, "actuation": drive.kind, "grip": grip}
 
 
 SUMMARY_COLUMNS = ("object", "trials", "errors", "successes", "success_rate", "ci95_low", "ci95_high",
@@ -232,7 +236,9 @@ def format_table(summary: dict) -> str:
     """The summary as a fixed-width text table."""
     def f(v, spec):
         return format(v, spec) if v is not None else "-"
-    lines = [f"{'object':<10} {'trials':>6} {'err':>4} {'succ':>5} {'rate':>6} {'95% CI':>13} "
+    lines = ([f"{summary['actuation']} gripper ({summary['gripper']}), grip {summary['grip']}"]
+             if "gripper" in summary else [])
+    lines += [f"{'object':<10} {'trials':>6} {'err':>4} {'succ':>5} {'rate':>6} {'95% CI':>13} "
              f"{'damage':>7} {'F med N':>8} {'F p95 N':>8} {'wall s':>7}"]
     for obj, s in summary["objects"].items():
         ci = f"{s['ci95'][0]:.2f}-{s['ci95'][1]:.2f}"

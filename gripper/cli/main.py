@@ -43,8 +43,12 @@ class _Version(argparse.Action):
 def build_parser() -> argparse.ArgumentParser:
     parser = OneLineParser(
         prog="gripper",
-        description="Simulate a four-finger cable-driven soft gripper in MuJoCo. "
-                    "All quantities in SI units unless a name says otherwise.")
+        description="Simulate a four-finger soft gripper in MuJoCo: the cable gripper (paper 000's cut "
+                    "silicone fingers, a cable each reeled in by a servo; the default) or the pneumatic "
+                    "gripper (paper 001's fibre-reinforced actuators): --actuation cable|pneumatic on "
+                    "bench, envelope, video, check, pullout, crush, params and write-models (a study sets "
+                    "actuation.kind). All quantities in "
+                    "SI units unless a name says otherwise.")
     parser.add_argument("--version", action=_Version)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND",
                                 title="commands (gripper COMMAND --help for each)")

@@ -15,7 +15,7 @@ from gripper.cli.options import (
 
 def add(sub) -> None:
     c = with_params(sub.add_parser(
-        "check", help="step the scene under random servo commands",
+        "check", help="step the scene under random drive commands (servos or chambers)",
         description="A smoke test of a design: step the gripper scene with every actuator given a "
                     "uniform random command over its range, renewed every 0.1 s; fail on any MuJoCo "
                     "warning or non-finite state."))

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import math
+from pathlib import Path
+
 from gripper.cli.inputs import (
     TRIALS_MAX,
     field_option,
@@ -64,14 +67,16 @@ def run(args) -> int:
                            progress=not args.no_progress)
     drive = drive_for(env.params)
     grip = drive.format_set_point(summary[drive.set_point_record])
-    print(f"capability envelope at a grip of {grip} "
-          f"(held: at least {summary['held_fraction']:.0%} of {env.trials} trials)")
+    need = math.ceil(summary["held_fraction"] * env.trials - 1e-9)
+    print(f"{env.params.actuation.kind} gripper's capability envelope at a grip of {grip} "
+          f"(held: at least {need} of {env.trials} trials)")
     for shape, s in summary["shapes"].items():
         rng = s["gripping_range_m"]
         grip = f"{rng[0] * 1e3:g}-{rng[1] * 1e3:g} mm" if rng else "none held"
         pay = f"{s['payload_kg']:g} kg" if s["payload_kg"] is not None else "none held"
         print(f"{shape:<10} gripping range {grip:<14} payload {pay}")
+    out = Path(args.out)
+    wrote = [f for f in RUN_FILES if (out / f).is_file()] + sorted(p.name for p in out.glob("map_*.png"))
     print(f"{summary['errors']} unstable trials, {summary.get('no_object', 0)} with no object seen, "
-          f"{summary['warnings']} MuJoCo warnings; wrote {args.out}/"
-          "trials.jsonl, envelope.csv, summary.json, map_*.png")
+          f"{summary['warnings']} MuJoCo warnings; wrote {out}/: {', '.join(wrote)}")
     return EXIT_UNSTABLE if summary["errors"] else 0
