@@ -24,10 +24,10 @@ Damage models checked with a platen crush (the balloon bursts when flattened):
     >>> run_trial("bag", camera=DepthCamera(dropout=0.1)).depth_estimate  # doctest: +SKIP
     True
 
-The Gymnasium environment ``SoftGripperGrasp-v8`` is registered on import:
+The Gymnasium environment ``SoftGripperGrasp-v9`` is registered on import:
 
     >>> import gymnasium as gym
-    >>> env = gym.make("gripper:SoftGripperGrasp-v8", objects="block")   # doctest: +SKIP
+    >>> env = gym.make("gripper:SoftGripperGrasp-v9", objects="block")   # doctest: +SKIP
 """
 
 import importlib
@@ -59,6 +59,9 @@ _EXPORTS = {
     "calibrate_pneumatic": "gripper.calibration.pneumatic_fit",
     "fit_pneumatic": "gripper.calibration.pneumatic_fit",
     "run_actuator_reference": "gripper.references.actuator_bending",
+    "Drive": "gripper.drives.drive",
+    "drive_for": "gripper.drives.drive",
+    "register_drive": "gripper.drives.drive",
     "build_gripper_spec": "gripper.model.builders",
     "build_scene_spec": "gripper.model.builders",
     "build_bending_spec": "gripper.drives.cable.finger",
@@ -107,6 +110,7 @@ if TYPE_CHECKING:  # static checkers and IDEs see the real names
     from gripper.datasheets.regulator import regulator_datasheet
     from gripper.drives.cable.finger import build_bending_spec
     from gripper.drives.cable.sensing import ServoSensing
+    from gripper.drives.drive import Drive, drive_for, register_drive
     from gripper.drives.pneumatic.sensing import PressureSensing
     from gripper.envs.grasp_env import SoftGripperGraspEnv
     from gripper.experiments.crush import crush_test

@@ -5,7 +5,7 @@ Three artefacts per gripper (cable and pneumatic), each through the public entry
 (``gym.make`` and the CLI), so the same script runs on any version from 0.16.0:
 
 - ``env``: SHA-256 of every observation, reward and termination flag of seeded random-action
-  episodes of ``SoftGripperGrasp-v8`` (block, then cylinder);
+  episodes of the registered ``SoftGripperGrasp-v*`` (block, then cylinder);
 - ``bench``: SHA-256 of ``trials.jsonl`` from ``gripper bench --trials 2`` on the five default
   objects, records sorted by (object, index), with the keys that are not physics removed: the
   wall time, the package versions and the run's configuration hash (which embeds the version);
