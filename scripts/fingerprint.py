@@ -65,10 +65,17 @@ grasp = { objects = ["block"], trials = 1 }
 """
 
 
+def env_id() -> str:
+    """The environment id this version registers (v8 in 0.17.0, v9 from 0.18.0, ...)."""
+    import gripper  # noqa: F401  (registers it)
+
+    return next(k for k in gym.registry if k.startswith("SoftGripperGrasp-v"))
+
+
 def env_hash(actuation: str, steps: int = 120) -> str:
     h = hashlib.sha256()
     for obj in ("block", "cylinder"):
-        env = gym.make("gripper:SoftGripperGrasp-v8", objects=obj, actuation=actuation)
+        env = gym.make(env_id(), objects=obj, actuation=actuation)
         env.action_space.seed(0)
         obs, _ = env.reset(seed=0)
         h.update(np.asarray(obs, np.float64).tobytes())

@@ -81,13 +81,18 @@ class Drive(ABC):
     effort_format: ClassVar[str] = "4.1f"
     #: design-study responses this drive can run (``gripper.studies.study_file.RESPONSES``)
     responses: ClassVar[tuple[str, ...]] = ("grasp", "holding_force", "envelope")
-    #: observation parts (name, per-finger size or None for per-hinge/per-pad, unit) after the
-    #: hinge velocities and at the end (what the hardware reports)
+    #: the environment's observation parts of this drive, (name, unit) with one entry per finger
+    #: each: after the hinge velocities, and at the end (what the hardware reports)
     state_observations: ClassVar[tuple[tuple[str, str], ...]] = ()
     sensed_observations: ClassVar[tuple[tuple[str, str], ...]] = ()
 
     def __init__(self, params: GripperParams):
         self.params = params
+
+    @property
+    def datasheet(self) -> Any:
+        """The actuator's datasheet (:mod:`gripper.datasheets`), or None for a drive without one."""
+        return None
 
     # --- the finger -------------------------------------------------------------------------
     @property

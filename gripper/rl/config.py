@@ -17,6 +17,7 @@ from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
 from gripper.core.fields import Validated
+from gripper.envs.registration import MAX_EPISODE_STEPS
 
 ALGOS = ("ppo", "sac")
 # First seed of the evaluation episodes. Each training chunk seeds its envs' generators with a
@@ -54,6 +55,9 @@ class TrainConfig(Validated):
     """
 
     algo: str = "ppo"
+    # The task variant: the environment's own arguments (each declared, with its allowed values,
+    # in gripper.envs.config.EnvConfig, which validates them here). The baselines' task closes
+    # all fingers with one command (the synergy), where a bare environment gives each its own.
     objects: tuple[str, ...] = ("block", "cylinder")
     action_mode: str = "synergy"
     xy_actions: bool = False
@@ -62,7 +66,7 @@ class TrainConfig(Validated):
     n_envs: int = 8
     chunk_steps: int = 65_536
     eval_episodes: int = 50
-    max_episode_steps: int = 300
+    max_episode_steps: int = MAX_EPISODE_STEPS
     demo_episodes: int = 0
     demo_noise: float = 0.3
     hyperparams: dict = field(default_factory=dict)
@@ -73,14 +77,11 @@ class TrainConfig(Validated):
             raise ValueError(f"algo: must be one of {', '.join(ALGOS)}, got {self.algo!r}")
         if isinstance(self.objects, str) or not self.objects or not all(isinstance(o, str) for o in self.objects):
             raise ValueError(f"objects: expected a non-empty list of object names, got {self.objects!r}")
-        from gripper.objects.library import get_object
+        from gripper.envs.config import EnvConfig
 
-        for name in self.objects:
-            get_object(name)
-        if self.action_mode not in ("synergy", "fingers"):
-            raise ValueError(f"action_mode: must be 'synergy' or 'fingers', got {self.action_mode!r}")
-        if not isinstance(self.xy_actions, bool):
-            raise ValueError(f"xy_actions: must be true or false, got {self.xy_actions!r}")
+        # the task variant's arguments, checked where they are declared
+        EnvConfig(objects=tuple(self.objects), action_mode=self.action_mode, xy_actions=self.xy_actions,
+                  reward_weights=dict(self.reward_weights)).validate()
         for name, lo in (("steps", 1), ("seed", 0), ("n_envs", 1), ("chunk_steps", 1), ("eval_episodes", 1),
                          ("max_episode_steps", 1)):
             v = getattr(self, name)
@@ -100,9 +101,6 @@ class TrainConfig(Validated):
         if self.demo_episodes and hp["normalize"]:
             raise ValueError("demo_episodes: behaviour cloning needs hyperparams.normalize = false "
                              "(the environment scales its observations itself)")
-        from gripper.envs.config import EnvConfig
-
-        EnvConfig(objects=tuple(self.objects), reward_weights=dict(self.reward_weights)).validate()
         return self
 
     def env_kwargs(self) -> dict[str, Any]:
