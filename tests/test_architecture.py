@@ -120,3 +120,30 @@ print("\\n".join(f for f in opened if "/gripper/" in f and "dist-info" not in f 
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "", done.stdout
+
+
+def test_no_module_imports_itself_through_others():
+    """No import cycle between the package's modules, function-level imports included (the
+    layers contract checks the arrows between layers; this, the modules within one)."""
+    import grimp
+
+    graph = grimp.build_graph("gripper")
+    imports = {m: graph.find_modules_directly_imported_by(m) for m in graph.modules}
+    state: dict[str, int] = {}  # 1: on the path, 2: done
+    cycles = []
+
+    def visit(module: str, path: list[str]) -> None:
+        state[module] = 1
+        path.append(module)
+        for other in sorted(imports[module]):
+            if state.get(other) == 1:
+                cycles.append(" -> ".join(path[path.index(other):] + [other]))
+            elif other not in state:
+                visit(other, path)
+        path.pop()
+        state[module] = 2
+
+    for module in sorted(imports):
+        if module not in state:
+            visit(module, [])
+    assert not cycles, "\n".join(cycles)
