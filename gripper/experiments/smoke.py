@@ -3,7 +3,6 @@
 Example:
     >>> from gripper.experiments.smoke import random_control_rollout
     >>> from gripper.core.params import GripperParams
-from gripper.drives import drive_for
     >>> random_control_rollout(GripperParams(), duration=0.2)["steps"]
     200
 """
