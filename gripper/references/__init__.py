@@ -2,8 +2,8 @@
 apart from the fitting code (:mod:`gripper.calibration`):
 
 - ``continuum``: the silicone finger as a MuJoCo 3D flex bent by its cable, with its mesh
-  (``finger_mesh``), its mesh-convergence study (``convergence``) and checks against closed forms
-  (``continuum_checks``);
+  (``finger_mesh``), its mesh-convergence study (``convergence``), checks against closed forms
+  (``continuum_checks``) and its static points relaxed to rest (``relaxation``);
 - ``fmbs``: paper 000's own flexible multibody model of the finger;
 - ``yeoh_tube``: the Yeoh thick-walled tube, exact and by FElupe, the first check of paper 001's
   pneumatic actuator model.
