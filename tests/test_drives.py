@@ -196,3 +196,25 @@ def test_no_code_outside_the_drives_asks_for_the_drive():
             if KIND_TESTS.search(line):
                 found.append(f"{rel}:{n}: {line.strip()}")
     assert not found, "\n".join(found)
+
+
+@pytest.mark.parametrize("kind", ["cable", "pneumatic"])
+def test_each_drive_reports_its_set_points_quantity(kind):
+    """A drive's sensor reading carries ``effort`` in the set-point's unit, and its effort
+    sensors read the same quantity, noiseless: the cable's tension, the chamber's pressure."""
+    from gripper.sim.scene import grasp_scene_spec, trial_params
+
+    p = GripperParams(actuation=Actuation(kind=kind)).validate()
+    drive = drive_for(p)
+    m = grasp_scene_spec(trial_params(p)).compile()
+    d = mujoco.MjData(m)
+    act = drive.actuator_ids(m)
+    d.ctrl[act] = 0.6 * m.actuator_ctrlrange[act, 1]
+    mujoco.mj_step(m, d, 500)  # 1 s: the fingers curl, the cables tighten, the chambers fill
+    adr, divisor = drive.effort_sensors(m)
+    true = d.sensordata[adr] / divisor
+    assert np.all(true > 0)
+    reading = drive.sensor(m, np.random.default_rng(0)).read(d.sensordata)
+    # within the hardware's noise and quantisation: 4 sigma of the load cell's 0.05 N, 5 sigma of
+    # the pressure monitor's 1 kPa (gripper.drives.*.sensing)
+    np.testing.assert_allclose(reading.effort, true, rtol=0.05, atol=0.2 if kind == "cable" else 5e3)

@@ -67,6 +67,11 @@ class ServoReading:
     load: np.ndarray
     tension: np.ndarray
 
+    @property
+    def effort(self) -> np.ndarray:
+        """The grip set-point's quantity: the cable tension at the spool [N]."""
+        return self.tension
+
     def to_dict(self) -> dict[str, list[float]]:
         return {"position_rad": self.position.tolist(), "current_A": self.current.tolist(),
                 "load": self.load.tolist(), "tension_N": self.tension.tolist()}

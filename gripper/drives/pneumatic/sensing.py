@@ -51,6 +51,11 @@ class PressureReading:
 
     pressure: np.ndarray
 
+    @property
+    def effort(self) -> np.ndarray:
+        """The grip set-point's quantity: the chamber pressure [Pa]."""
+        return self.pressure
+
     def to_dict(self) -> dict[str, list[float]]:
         return {"pressure_Pa": self.pressure.tolist()}
 
