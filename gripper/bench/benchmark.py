@@ -156,24 +156,24 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
     """
     cfg.validate()
     run_hash = cfg.hash()
-    out = open_run(out, workers, scheduler, "config.json", "config", run_hash, cfg.identity(),
-                   "a run with another configuration", RUN_FILES)
-    tpath = out / "trials.jsonl"
-    done: dict[tuple[str, int], Mapping] = {}
-    for r in read_trials(tpath):
-        done.setdefault(_trial_key(r), r)
-    jobs = cfg.jobs()
-    spec = dict(zip(cfg.names(), cfg.objects, strict=True))
-    todo = [j for j in jobs if j not in done]
-    t0 = time.perf_counter()
-    run_ordered([(cfg, spec[name], i, run_hash) for name, i in todo], _run_one, tpath, workers=workers,
-                scheduler=scheduler, on_record=lambda rec: done.__setitem__(_trial_key(rec), rec),
-                progress=(len(jobs), len(jobs) - len(todo), "grasp trials") if progress else None)
-    _keep_trial_order(tpath, jobs)
-    records = [done[j] for j in jobs]
-    summary = summarize(records, cfg, wall_time_s=time.perf_counter() - t0, resumed=len(jobs) - len(todo))
-    write_summary(out, summary)
-    return summary
+    with open_run(out, workers, scheduler, "config.json", "config", run_hash, cfg.identity(),
+                  "a run with another configuration", RUN_FILES) as out:
+        tpath = out / "trials.jsonl"
+        done: dict[tuple[str, int], Mapping] = {}
+        for r in read_trials(tpath):
+            done.setdefault(_trial_key(r), r)
+        jobs = cfg.jobs()
+        spec = dict(zip(cfg.names(), cfg.objects, strict=True))
+        todo = [j for j in jobs if j not in done]
+        t0 = time.perf_counter()
+        run_ordered([(cfg, spec[name], i, run_hash) for name, i in todo], _run_one, tpath, workers=workers,
+                    scheduler=scheduler, on_record=lambda rec: done.__setitem__(_trial_key(rec), rec),
+                    progress=(len(jobs), len(jobs) - len(todo), "grasp trials") if progress else None)
+        _keep_trial_order(tpath, jobs)
+        records = [done[j] for j in jobs]
+        summary = summarize(records, cfg, wall_time_s=time.perf_counter() - t0, resumed=len(jobs) - len(todo))
+        write_summary(out, summary)
+        return summary
 
 
 def _keep_trial_order(tpath: Path, jobs: list[tuple[str, int]]) -> None:

@@ -18,7 +18,8 @@ import os
 import signal
 import socket
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from urllib.parse import urlsplit
 
@@ -75,17 +76,70 @@ def check_scheduler(address: str | None, timeout: float = SCHEDULER_TIMEOUT_S) -
                          "one with 'dask scheduler', or leave --scheduler out for a local cluster") from None
 
 
+# The marker file of each command's run folder: a folder holds one command's runs only.
+RUN_MARKERS = {"config.json": "a benchmark", "envelope.json": "an envelope", "study.json": "a study"}
+LOCK_FILE = ".lock"
+
+
+@contextmanager
 def open_run(out: str | Path, workers: int, scheduler: str | None, filename: str, key: str, h: str,
-             payload: dict, what: str, files: tuple[str, ...] = ()) -> Path:
-    """Check the worker count and the scheduler, then claim ``out`` (:func:`claim_run_dir`):
-    a refused run leaves no folder behind. ``files``: the run's other files, each of which must
-    be a writable regular file where it exists. Returns ``out`` as a path."""
+             payload: dict, what: str, files: tuple[str, ...] = ()) -> Iterator[Path]:
+    """Check the worker count and the scheduler, then hold ``out`` for this run: its lock
+    (:func:`folder_lock`: one writer per folder) and its claim (:func:`claim_run_dir`). A refused
+    run leaves no folder behind. ``files``: the run's other files, each of which must be a
+    writable regular file where it exists. Yields ``out`` as a path; the lock is released when
+    the run ends, however it ends."""
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise ValueError(f"--workers: must be an integer >= 1, got {workers!r}")
     check_scheduler(scheduler)
     out = Path(out)
-    claim_run_dir(out, filename, key, h, payload, what, files)
-    return out
+    from gripper.core.atomic import check_output_dir
+
+    check_output_dir(out, files=(filename, LOCK_FILE, *files))
+    other = [m for m in RUN_MARKERS if m != filename and (out / m).is_file()]
+    if other:
+        raise ValueError(f"--out: {out} holds {RUN_MARKERS[other[0]]}'s run ({other[0]}); choose another --out "
+                         "folder")
+    made = not out.exists()
+    out.mkdir(parents=True, exist_ok=True)
+    try:
+        with folder_lock(out):
+            claim_run_dir(out, filename, key, h, payload, what, files)
+            made = False
+            yield out
+    finally:
+        if made:  # refused before its claim: leave nothing behind
+            (out / LOCK_FILE).unlink(missing_ok=True)
+            try:
+                out.rmdir()
+            except OSError:
+                pass
+
+
+@contextmanager
+def folder_lock(out: Path) -> Iterator[None]:
+    """Hold the run folder's advisory lock (``out/.lock``, the OS's ``flock``) for one writer:
+    another process that asks for it while it is held is refused in one line naming the holder;
+    the OS releases it when the holder ends, however it ends (a crash, SIGKILL)."""
+    import fcntl
+
+    path = out / LOCK_FILE
+    with open(path, "a+", encoding="utf-8") as f:
+        try:
+            fcntl.flock(f.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            f.seek(0)
+            holder = f.read().strip() or "unknown"
+            raise ValueError(f"--out: {out} is being written by another run (process {holder}); wait for it "
+                             "to end, or choose another --out folder") from None
+        f.seek(0)
+        f.truncate()
+        f.write(str(os.getpid()))
+        f.flush()
+        try:
+            yield
+        finally:
+            fcntl.flock(f.fileno(), fcntl.LOCK_UN)
 
 
 def claim_run_dir(out: Path, filename: str, key: str, h: str, payload: dict, what: str,

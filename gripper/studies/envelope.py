@@ -147,21 +147,22 @@ def run_envelope(env: Envelope, out: str | Path, *, workers: int = DEFAULT_WORKE
 
     env.validate()
     h = env.hash()
-    out = open_run(out, workers, scheduler, "envelope.json", "envelope", h, env.identity(), "another envelope",
-                   RUN_FILES)
-    path = out / "trials.jsonl"
-    done = {(r["point"], r["index"]): r for r in read_jsonl(path)}
-    jobs = env.jobs()
-    todo = [(env, k, i, h) for k, i in jobs if (k, i) not in done]
-    run_ordered(todo, _run_one, path, workers=workers, scheduler=scheduler,
-                on_record=lambda r: done.__setitem__((r["point"], r["index"]), r),
-                progress=(len(jobs), len(jobs) - len(todo), "envelope trials") if progress else None)
-    records = [done[j] for j in jobs]
-    write_table(records, out / "envelope.csv")
-    summary = summarize(records, env)
-    write_atomic(out / "summary.json", lambda tmp: Path(tmp).write_text(json.dumps(summary, indent=2, sort_keys=True)))
-    write_maps(records, env, out)
-    return summary
+    with open_run(out, workers, scheduler, "envelope.json", "envelope", h, env.identity(), "another envelope",
+                  RUN_FILES) as out:
+        path = out / "trials.jsonl"
+        done = {(r["point"], r["index"]): r for r in read_jsonl(path)}
+        jobs = env.jobs()
+        todo = [(env, k, i, h) for k, i in jobs if (k, i) not in done]
+        run_ordered(todo, _run_one, path, workers=workers, scheduler=scheduler,
+                    on_record=lambda r: done.__setitem__((r["point"], r["index"]), r),
+                    progress=(len(jobs), len(jobs) - len(todo), "envelope trials") if progress else None)
+        records = [done[j] for j in jobs]
+        write_table(records, out / "envelope.csv")
+        summary = summarize(records, env)
+        write_atomic(out / "summary.json",
+                     lambda tmp: Path(tmp).write_text(json.dumps(summary, indent=2, sort_keys=True)))
+        write_maps(records, env, out)
+        return summary
 
 
 COLUMNS = ("shape", "size_m", "mass_kg", "friction", "index", "status", "success", "failed_phase",

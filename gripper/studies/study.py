@@ -54,20 +54,20 @@ def run_study(study: Study, out: str | Path, *, workers: int = DEFAULT_WORKERS, 
     """Run (or resume) the study into ``out``; write the table, plots and recommendations."""
     from gripper.bench.execution import open_run, read_jsonl, run_ordered
 
-    out = open_run(out, workers, scheduler, "study.json", "study", study.hash(), study.identity(),
-                   "another study", RUN_FILES)
-    path = out / "results.jsonl"
-    points = study.design_points()
-    done = {r["point"]: r for r in read_jsonl(path)}
-    todo = [(study, i, pt) for i, pt in enumerate(points) if i not in done]
-    run_ordered(todo, run_point, path, workers=workers, scheduler=scheduler,
-                on_record=lambda rec: done.__setitem__(rec["point"], rec),
-                progress=(len(points), len(points) - len(todo), "design points") if progress else None)
-    records = [done[i] for i in range(len(points))]
-    write_table(records, study, out / "results.csv")
-    write_plots(records, study, out)
-    write_text_atomic(out / "recommendations.md", recommendations(records, study))
-    return records
+    with open_run(out, workers, scheduler, "study.json", "study", study.hash(), study.identity(),
+                  "another study", RUN_FILES) as out:
+        path = out / "results.jsonl"
+        points = study.design_points()
+        done = {r["point"]: r for r in read_jsonl(path)}
+        todo = [(study, i, pt) for i, pt in enumerate(points) if i not in done]
+        run_ordered(todo, run_point, path, workers=workers, scheduler=scheduler,
+                    on_record=lambda rec: done.__setitem__(rec["point"], rec),
+                    progress=(len(points), len(points) - len(todo), "design points") if progress else None)
+        records = [done[i] for i in range(len(points))]
+        write_table(records, study, out / "results.csv")
+        write_plots(records, study, out)
+        write_text_atomic(out / "recommendations.md", recommendations(records, study))
+        return records
 
 
 def _shown(key: str, v):

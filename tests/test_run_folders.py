@@ -1,0 +1,56 @@
+"""Run folders have one writer and one command (a start on issue 46): a second run into a folder
+that a run is writing is refused in one line, and a command refuses another command's folder."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+GRIPPER = [sys.executable, "-m", "gripper.cli.main"]
+
+
+def _cli(*args: str, cwd: Path) -> subprocess.CompletedProcess:
+    return subprocess.run([*GRIPPER, *args], cwd=cwd, capture_output=True, text=True, timeout=600,
+                          stdin=subprocess.DEVNULL)
+
+
+def test_a_second_writer_is_refused_and_nothing_is_duplicated(tmp_path):
+    bench = ["bench", "--objects", "block", "--trials", "4", "--workers", "1", "--no-progress", "--out", "run"]
+    first = subprocess.Popen([*GRIPPER, *bench], cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                             text=True, stdin=subprocess.DEVNULL)
+    try:
+        lock = tmp_path / "run" / ".lock"
+        deadline = time.monotonic() + 120
+        while not (lock.is_file() and lock.read_text().strip() == str(first.pid)):  # the first holds it
+            assert first.poll() is None and time.monotonic() < deadline, first.stderr.read() if first.stderr else ""
+            time.sleep(0.05)
+        second = _cli(*bench, cwd=tmp_path)
+        assert second.returncode == 2
+        lines = second.stderr.strip().splitlines()
+        assert len(lines) == 1 and lines[0].endswith(
+            f"--out: run is being written by another run (process {first.pid}); wait for it to end, "
+            "or choose another --out folder"), lines
+    finally:
+        assert first.wait(timeout=600) == 0
+    records = [json.loads(line) for line in (tmp_path / "run" / "trials.jsonl").read_text().splitlines()]
+    assert sorted(r["index"] for r in records) == [0, 1, 2, 3]  # each trial once
+    # the lock is the OS's: free again once its holder has ended, so the run resumes
+    again = _cli(*bench, cwd=tmp_path)
+    assert again.returncode == 0, again.stderr
+
+
+def test_a_command_refuses_another_commands_folder(tmp_path):
+    (tmp_path / "run").mkdir()
+    (tmp_path / "run" / "config.json").write_text(json.dumps({"config_hash": "0"}))
+    before = sorted(os.listdir(tmp_path / "run"))
+    done = _cli("envelope", "--shapes", "box", "--sizes", "0.04", "--masses", "0.05", "--frictions", "0.6",
+                "--trials", "1", "--no-progress", "--out", "run", cwd=tmp_path)
+    assert done.returncode == 2
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].endswith(
+        "--out: run holds a benchmark's run (config.json); choose another --out folder"), lines
+    assert sorted(os.listdir(tmp_path / "run")) == before  # nothing written
