@@ -65,7 +65,7 @@ class CableDrive(Drive):
 
     def __init__(self, params: GripperParams):
         super().__init__(params)
-        self._index: dict[int, dict[str, np.ndarray]] = {}
+        self._index: tuple[mujoco.MjModel, dict[str, np.ndarray]] | None = None  # the last model's indices
 
     @property
     def datasheet(self) -> ServoDatasheet:
@@ -195,12 +195,12 @@ class CableDrive(Drive):
         return {"peak_cable_tension_N": peak_effort}
 
     def _indices(self, m: mujoco.MjModel) -> dict[str, np.ndarray]:
-        if id(m) not in self._index:
+        if self._index is None or self._index[0] is not m:
             n = self.params.layout.n_fingers
-            self._index[id(m)] = {
+            self._index = (m, {
                 "reel": np.array([m.jnt_qposadr[m.joint(self.names(k).reel).id] for k in range(n)]),
-                "tension": self.effort_sensors(m)[0], "act": self.actuator_ids(m)}
-        return self._index[id(m)]
+                "tension": self.effort_sensors(m)[0], "act": self.actuator_ids(m)})
+        return self._index[1]
 
     def observe_state(self, m, d, sensordata) -> list[np.ndarray]:
         i = self._indices(m)

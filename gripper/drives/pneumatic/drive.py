@@ -54,7 +54,7 @@ class PneumaticDrive(Drive):
 
     def __init__(self, params):
         super().__init__(params)
-        self._index: dict[int, tuple[PressureSensor, np.ndarray]] = {}
+        self._index: tuple[mujoco.MjModel, PressureSensor, np.ndarray] | None = None  # the last model's
 
     @property
     def datasheet(self) -> RegulatorDatasheet:
@@ -171,9 +171,9 @@ class PneumaticDrive(Drive):
         return {"peak_cable_tension_N": 0.0, "actuation": self.kind, "peak_pressure_Pa": peak_effort}
 
     def _indices(self, m: mujoco.MjModel) -> tuple[PressureSensor, np.ndarray]:
-        if id(m) not in self._index:
-            self._index[id(m)] = (PressureSensor(m, self.params), self.actuator_ids(m))
-        return self._index[id(m)]
+        if self._index is None or self._index[0] is not m:
+            self._index = (m, PressureSensor(m, self.params), self.actuator_ids(m))
+        return self._index[1], self._index[2]
 
     def observe_state(self, m, d, sensordata) -> list[np.ndarray]:
         """Chamber pressures and set-points as fractions of the highest set-point."""
