@@ -54,3 +54,39 @@ def test_a_command_refuses_another_commands_folder(tmp_path):
     assert len(lines) == 1 and lines[0].endswith(
         "--out: run holds a benchmark's run (config.json); choose another --out folder"), lines
     assert sorted(os.listdir(tmp_path / "run")) == before  # nothing written
+
+
+def _bench(tmp_path: Path, out: str, seed: int, trials: int = 2) -> subprocess.CompletedProcess:
+    return _cli("bench", "--objects", "block", "--trials", str(trials), "--seed", str(seed), "--workers", "1",
+                "--no-progress", "--out", out, cwd=tmp_path)
+
+
+def test_a_folder_of_mixed_runs_is_refused_and_left_as_it_was(tmp_path):
+    """Records are checked against the run's configuration on resume: a record of another seed
+    appended by hand, the same trial twice, or a folder whose config.json was removed and rerun
+    with another seed are each refused in one line naming the record; nothing is written."""
+    assert _bench(tmp_path, "s0", 0).returncode == 0
+    assert _bench(tmp_path, "s1", 1, trials=1).returncode == 0
+    trials = tmp_path / "s0" / "trials.jsonl"
+    own = trials.read_text()
+    foreign = (tmp_path / "s1" / "trials.jsonl").read_text()
+    cases = {
+        "another seed's record appended": (own + foreign, None, 0,
+                                           "record 3 (trial block-1-0000) belongs to another run"),
+        "a trial twice": (own + own.splitlines(True)[0], None, 0, "record 3 repeats trial block-0-0000"),
+        "config.json removed, rerun with another seed": (own, "remove", 1,
+                                                         "record 1 (trial block-0-0000) belongs to another run"),
+    }
+    config = (tmp_path / "s0" / "config.json").read_text()
+    summary = (tmp_path / "s0" / "summary.json").read_text()
+    for name, (text, config_action, seed, message) in cases.items():
+        trials.write_text(text)
+        (tmp_path / "s0" / "config.json").write_text(config)
+        if config_action == "remove":
+            (tmp_path / "s0" / "config.json").unlink()
+        done = _bench(tmp_path, "s0", seed)
+        lines = done.stderr.strip().splitlines()
+        assert done.returncode == 2 and len(lines) == 1 and message in lines[0], (name, lines)
+        assert trials.read_text() == text, name  # no record lost, none added
+        assert (tmp_path / "s0" / "summary.json").read_text() == summary, name  # no summary of a mixed file
+        assert (tmp_path / "s0" / "config.json").exists() == (config_action is None), name  # none written

@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
-from gripper.bench.execution import open_run, read_jsonl, run_ordered
+from gripper.bench.execution import check_own_records, open_run, read_jsonl, run_ordered
 from gripper.core.atomic import write_atomic, write_csv_atomic, write_text_atomic
 from gripper.core.fields import Validated
 from gripper.core.hashing import stable_hash
@@ -141,10 +141,11 @@ def _trial_key(rec: Mapping) -> tuple[str, int]:
     return rec["object"], int(rec["index"])
 
 
-def read_trials(path: Path) -> list[TrialRecord]:
-    """Complete records of ``trials.jsonl`` (a torn last line is cut off), each checked
-    against the record's schema (a bad one is a ValueError naming the file and the record)."""
-    return [TrialRecord.from_dict(r, where=f"{path}: record {i + 1}") for i, r in enumerate(read_jsonl(path))]
+def read_trials(path: Path, *, repair: bool = True) -> list[TrialRecord]:
+    """Complete records of ``trials.jsonl`` (a torn last line is cut off, with ``repair``), each
+    checked against the record's schema (a bad one is a ValueError naming the file and the record)."""
+    return [TrialRecord.from_dict(r, where=f"{path}: record {i + 1}")
+            for i, r in enumerate(read_jsonl(path, repair=repair))]
 
 
 def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
@@ -156,12 +157,22 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
     """
     cfg.validate()
     run_hash = cfg.hash()
+
+    def own_records(path: Path, repair: bool = True) -> list[TrialRecord]:
+        records = read_trials(path, repair=repair)
+        check_own_records(records, path, run_hash, _trial_key, lambda r: f"trial {r['trial_id']}")
+        return records
+
+    if not (Path(out) / "config.json").exists():
+        # a folder that lost its configuration: its records are checked before a new one is
+        # written, so a refusal writes nothing (a torn line may be another writer's, left alone)
+        own_records(Path(out) / "trials.jsonl", repair=False)
     with open_run(out, workers, scheduler, "config.json", "config", run_hash, cfg.identity(),
                   "a run with another configuration", RUN_FILES) as out:
         tpath = out / "trials.jsonl"
         done: dict[tuple[str, int], Mapping] = {}
-        for r in read_trials(tpath):
-            done.setdefault(_trial_key(r), r)
+        for r in own_records(tpath):  # again, now that this run holds the folder
+            done[_trial_key(r)] = r
         jobs = cfg.jobs()
         spec = dict(zip(cfg.names(), cfg.objects, strict=True))
         todo = [j for j in jobs if j not in done]

@@ -18,19 +18,21 @@ import os
 import signal
 import socket
 import sys
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 from urllib.parse import urlsplit
 
 
-def read_jsonl(path: Path) -> list[dict]:
-    """Complete records of a JSON-lines file; a torn last line (a killed writer) is cut off."""
-    if not path.exists():
+def read_jsonl(path: Path, *, repair: bool = True) -> list[dict]:
+    """Complete records of a JSON-lines file; a torn last line (a killed writer) is cut off from
+    the file (``repair``: only by the run that holds the folder; without it, only ignored)."""
+    if not path.is_file():
         return []
     raw = path.read_bytes()
     keep = raw[: raw.rfind(b"\n") + 1]
-    if len(keep) != len(raw):
+    if len(keep) != len(raw) and repair:
         torn = keep.count(b"\n") + 1
         print(f"{path}: line {torn} was incomplete (a run stopped while writing it); dropped, "
               "its trial runs again", file=sys.stderr)
@@ -46,6 +48,28 @@ def read_jsonl(path: Path) -> list[dict]:
             raise ValueError(f"--out: {path}: line {n} is not a JSON record ({e.msg}); delete that line "
                              "to resume, or choose a new --out folder") from None
     return out
+
+
+def check_own_records(records: Sequence[Mapping], path: Path, run_hash: str, key: Callable[[Mapping], Any],
+                      what: Callable[[Mapping], str]) -> None:
+    """Refuse a run file that holds a record of another run (its ``run_config_hash`` is not
+    ``run_hash``: another seed, design or protocol appended by hand or by another tool, or a
+    folder whose configuration file was replaced) or the same job twice, naming the first such
+    record: a resume then never mixes runs, and a summary never counts another run's record.
+
+    Raises:
+        ValueError: one line naming ``--out``, the file, the record and why.
+    """
+    seen: set = set()
+    for n, r in enumerate(records, start=1):
+        if r.get("run_config_hash") != run_hash:
+            raise ValueError(f"--out: {path}: record {n} ({what(r)}) belongs to another run (configuration "
+                             f"{r.get('run_config_hash')}, this run's {run_hash}); choose another --out folder")
+        k = key(r)
+        if k in seen:
+            raise ValueError(f"--out: {path}: record {n} repeats {what(r)}; the folder was written twice: "
+                             "choose another --out folder")
+        seen.add(k)
 
 
 # How long a --scheduler address may take to accept a connection before it counts as unreachable [s].

@@ -143,14 +143,23 @@ RUN_FILES = ("envelope.json", "trials.jsonl", "envelope.csv", "summary.json")
 def run_envelope(env: Envelope, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
                  progress: bool = True) -> dict:
     """Run (or resume) the envelope into ``out``; write the table, the maps and the summary."""
-    from gripper.bench.execution import open_run, read_jsonl, run_ordered
+    from gripper.bench.execution import check_own_records, open_run, read_jsonl, run_ordered
 
     env.validate()
     h = env.hash()
+
+    def own_records(path: Path, repair: bool = True) -> list[dict]:
+        records = read_jsonl(path, repair=repair)
+        check_own_records(records, path, h, lambda r: (r["point"], r["index"]),
+                          lambda r: f"point {r.get('point')}, trial {r.get('index')}")
+        return records
+
+    if not (Path(out) / "envelope.json").exists():  # lost its identity: checked before a new one is written
+        own_records(Path(out) / "trials.jsonl", repair=False)
     with open_run(out, workers, scheduler, "envelope.json", "envelope", h, env.identity(), "another envelope",
                   RUN_FILES) as out:
         path = out / "trials.jsonl"
-        done = {(r["point"], r["index"]): r for r in read_jsonl(path)}
+        done = {(r["point"], r["index"]): r for r in own_records(path)}  # again, holding the folder
         jobs = env.jobs()
         todo = [(env, k, i, h) for k, i in jobs if (k, i) not in done]
         run_ordered(todo, _run_one, path, workers=workers, scheduler=scheduler,
