@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Regenerate models/soft_gripper (the MJCF the trials run) from the default parameters.
+# Regenerate models/ (each shipped gripper's MJCF as the trials run it: soft_gripper, the cable
+# gripper, and pneumatic_gripper) from the default parameters, with each README's picture
+# (rendered headless).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-.venv/bin/gripper write-models
+MUJOCO_GL="${MUJOCO_GL:-egl}" .venv/bin/gripper write-models --picture
