@@ -163,12 +163,9 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
         check_own_records(records, path, run_hash, _trial_key, lambda r: f"trial {r['trial_id']}")
         return records
 
-    if not (Path(out) / "config.json").exists():
-        # a folder that lost its configuration: its records are checked before a new one is
-        # written, so a refusal writes nothing (a torn line may be another writer's, left alone)
-        own_records(Path(out) / "trials.jsonl", repair=False)
     with open_run(out, workers, scheduler, "config.json", "config", run_hash, cfg.identity(),
-                  "a run with another configuration", RUN_FILES) as out:
+                  "a run with another configuration", RUN_FILES,
+                  check_records=lambda repair: own_records(Path(out) / "trials.jsonl", repair)) as out:
         tpath = out / "trials.jsonl"
         done: dict[tuple[str, int], Mapping] = {}
         for r in own_records(tpath):  # again, now that this run holds the folder

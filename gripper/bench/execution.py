@@ -107,12 +107,16 @@ LOCK_FILE = ".lock"
 
 @contextmanager
 def open_run(out: str | Path, workers: int, scheduler: str | None, filename: str, key: str, h: str,
-             payload: dict, what: str, files: tuple[str, ...] = ()) -> Iterator[Path]:
+             payload: dict, what: str, files: tuple[str, ...] = (),
+             check_records: Callable[[bool], object] | None = None) -> Iterator[Path]:
     """Check the worker count and the scheduler, then hold ``out`` for this run: its lock
     (:func:`folder_lock`: one writer per folder) and its claim (:func:`claim_run_dir`). A refused
     run leaves no folder behind. ``files``: the run's other files, each of which must be a
-    writable regular file where it exists. Yields ``out`` as a path; the lock is released when
-    the run ends, however it ends."""
+    writable regular file where it exists. ``check_records(repair)``: the command's check of the
+    folder's records against this run (:func:`check_own_records`), run before a folder that has
+    lost its ``filename`` is claimed anew (read-only: a torn last line may be another writer's),
+    so that a refusal writes nothing. Yields ``out`` as a path; the lock is released when the
+    run ends, however it ends."""
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise ValueError(f"--workers: must be an integer >= 1, got {workers!r}")
     check_scheduler(scheduler)
@@ -124,6 +128,8 @@ def open_run(out: str | Path, workers: int, scheduler: str | None, filename: str
     if other:
         raise ValueError(f"--out: {out} holds {RUN_MARKERS[other[0]]}'s run ({other[0]}); choose another --out "
                          "folder")
+    if check_records is not None and not (out / filename).exists():
+        check_records(False)
     made = not out.exists()
     out.mkdir(parents=True, exist_ok=True)
     try:

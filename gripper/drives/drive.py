@@ -31,7 +31,7 @@ import mujoco
 import numpy as np
 
 from gripper.core.params import ACTUATIONS, GripperParams
-from gripper.parts.names import FingerNames, finger_name
+from gripper.parts.names import FingerNames
 
 
 class DriveReading(Protocol):
@@ -45,7 +45,7 @@ class DriveReading(Protocol):
 class DriveSensor(Protocol):
     """Reads a drive's hardware from one MuJoCo sensor row (quantised and noisy as the real one)."""
 
-    def read(self, sensordata: np.ndarray, rng: np.random.Generator | None = None) -> Any: ...
+    def read(self, sensordata: np.ndarray, rng: np.random.Generator | None = None) -> DriveReading: ...
 
 
 class GripControl(Protocol):
@@ -260,6 +260,8 @@ _DRIVES: dict[str, str | type[Drive]] = {
     "cable": "gripper.drives.cable.drive:CableDrive",
     "pneumatic": "gripper.drives.pneumatic.drive:PneumaticDrive",
 }
+# The drives the package ships (``models/`` holds a gripper of each); they stay registered.
+SHIPPED_DRIVES = tuple(_DRIVES)
 
 
 def register_drive(kind: str, drive: str | type[Drive]) -> None:
@@ -274,7 +276,7 @@ def register_drive(kind: str, drive: str | type[Drive]) -> None:
 
 def unregister_drive(kind: str) -> None:
     """Undo :func:`register_drive` for a drive that is not shipped."""
-    if kind in ("cable", "pneumatic"):
+    if kind in SHIPPED_DRIVES:
         raise ValueError(f"actuation.kind: {kind!r} is a shipped drive and stays registered")
     _DRIVES.pop(kind, None)
     if kind in ACTUATIONS:
@@ -302,5 +304,5 @@ def registered_drives() -> list[str]:
     return list(_DRIVES)
 
 
-__all__ = ["Drive", "DriveReading", "DriveSensor", "GripControl", "drive_class", "drive_for", "finger_name",
+__all__ = ["SHIPPED_DRIVES", "Drive", "DriveReading", "DriveSensor", "GripControl", "drive_class", "drive_for",
            "register_drive", "registered_drives", "unregister_drive"]

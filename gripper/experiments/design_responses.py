@@ -21,7 +21,7 @@ from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.pullout import run_pullout
 from gripper.experiments.trial import run_trial, sample_placement
-from gripper.objects.envelope_objects import HELD_FRACTION, SHAPES, envelope_object
+from gripper.objects.envelope_objects import SHAPES, envelope_object, point_held
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement
 
@@ -76,9 +76,10 @@ def blocked_tip_force(p: GripperParams, r: float) -> float:
 
 
 def envelope_response(p: GripperParams, opts: dict, seed: int, protocol: GraspProtocol) -> dict[str, float | None]:
-    """Per shape, the smallest and largest width [m] held in at least :data:`HELD_FRACTION` of
-    ``trials`` grasps (None: none held), on the grid ``sizes`` at one ``mass`` [kg] and ``friction``
-    (the envelope's defaults: 50 g, 0.6), as ``gripper envelope`` finds its gripping range."""
+    """Per shape, the smallest and largest width [m] held in ``trials`` grasps (the envelope's rule:
+    :func:`gripper.objects.envelope_objects.point_held`; None: none held), on the grid ``sizes`` at
+    one ``mass`` [kg] and ``friction`` (the envelope's defaults: 50 g, 0.6), as ``gripper envelope``
+    finds its gripping range."""
     out: dict[str, float | None] = {}
     mass, mu, trials = float(opts.get("mass", 0.05)), float(opts.get("friction", 0.6)), int(opts.get("trials", 3))
     for shape in opts.get("shapes", list(SHAPES)):
@@ -87,7 +88,7 @@ def envelope_response(p: GripperParams, opts: dict, seed: int, protocol: GraspPr
             obj = envelope_object(shape, size, mass, mu)
             recs = [run_trial(obj, seed, i, params=p, protocol=protocol) for i in range(trials)]
             ok = [bool(r["success"]) for r in recs if r["status"] == "ok"]
-            if ok and sum(ok) / len(ok) >= HELD_FRACTION - 1e-9:
+            if point_held(sum(ok) / len(ok) if ok else None):
                 held.append(size)
         out[f"envelope_{shape}_smallest_m"] = held[0] if held else None
         out[f"envelope_{shape}_largest_m"] = held[-1] if held else None

@@ -20,6 +20,12 @@ ENVELOPE_HEIGHT = 0.060
 HELD_FRACTION = 2 / 3
 
 
+def point_held(fraction: float | None) -> bool:
+    """Whether a point whose trials succeeded in ``fraction`` of the runs that ended (None: none
+    ended) counts as held: at least :data:`HELD_FRACTION`."""
+    return fraction is not None and fraction >= HELD_FRACTION - 1e-9
+
+
 def envelope_object(shape: str, size: float, mass: float, friction: float) -> GraspObject:
     """The rigid object of one envelope point (``size``: the width [m])."""
     r = 0.5 * size
@@ -30,4 +36,4 @@ def envelope_object(shape: str, size: float, mass: float, friction: float) -> Gr
                        oversize=True).validate()
 
 
-__all__ = ["ENVELOPE_HEIGHT", "HELD_FRACTION", "SHAPES", "envelope_object"]
+__all__ = ["ENVELOPE_HEIGHT", "HELD_FRACTION", "SHAPES", "envelope_object", "point_held"]

@@ -33,6 +33,7 @@ from gripper.core.atomic import write_text_atomic
 from gripper.core.params import GripperParams, parameter_rows
 from gripper.core.resources import MODELS_DIR, checkout_models_dir
 from gripper.drives import drive_for
+from gripper.drives.drive import SHIPPED_DRIVES
 from gripper.model.builders import add_scene_dressing
 from gripper.sim.scene import trial_gripper_spec, trial_params
 
@@ -43,7 +44,7 @@ SCENE_FILE = "scene.xml"
 def shipped_grippers() -> dict[str, GripperParams]:
     """The grippers ``models/`` holds, by model name: each drive's default design."""
     out = {}
-    for kind in ("cable", "pneumatic"):
+    for kind in SHIPPED_DRIVES:
         p = GripperParams()
         p = p.replace(actuation=p.actuation.replace(kind=kind)).validate()
         out[drive_for(p).model_name] = p

@@ -28,7 +28,7 @@ from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import read_user_data
 from gripper.drives import drive_for
 from gripper.experiments.protocol import GRIP_TENSION, GraspProtocol, TrialNoise
-from gripper.objects.envelope_objects import HELD_FRACTION, SHAPES, envelope_object
+from gripper.objects.envelope_objects import HELD_FRACTION, SHAPES, envelope_object, point_held
 
 KEYS = ("shapes", "sizes", "masses", "frictions", "trials", "seed", "grip_tension", "grip_pressure")
 
@@ -154,10 +154,9 @@ def run_envelope(env: Envelope, out: str | Path, *, workers: int = DEFAULT_WORKE
                           lambda r: f"point {r.get('point')}, trial {r.get('index')}")
         return records
 
-    if not (Path(out) / "envelope.json").exists():  # lost its identity: checked before a new one is written
-        own_records(Path(out) / "trials.jsonl", repair=False)
     with open_run(out, workers, scheduler, "envelope.json", "envelope", h, env.identity(), "another envelope",
-                  RUN_FILES) as out:
+                  RUN_FILES,
+                  check_records=lambda repair: own_records(Path(out) / "trials.jsonl", repair)) as out:
         path = out / "trials.jsonl"
         done = {(r["point"], r["index"]): r for r in own_records(path)}  # again, holding the folder
         jobs = env.jobs()
@@ -209,7 +208,7 @@ def summarize(records: list[dict], env: Envelope) -> dict:
             for k, (s, w, m, f) in enumerate(pts):
                 if s == shape and f == mu:
                     grid[(w, m)] = frac_of.get(k)
-            held = {wm for wm, frac in grid.items() if frac is not None and frac >= HELD_FRACTION - 1e-9}
+            held = {wm for wm, frac in grid.items() if point_held(frac)}
             light = min(env.masses)
             sizes = sorted(w for w, m in held if m == light)
             key = shape if len(env.frictions) == 1 else f"{shape}@mu{mu:g}"
