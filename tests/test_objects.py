@@ -53,7 +53,7 @@ def test_unreadable_mesh_is_refused(tmp_path):
     path.write_bytes(b"\x00\x01not a mesh")
     with pytest.raises(ValueError, match="mesh"):
         mesh_object(path)
-    with pytest.raises(ValueError, match="not found"):
+    with pytest.raises(ValueError, match="No such file"):
         mesh_object(tmp_path / "missing.obj")
 
 

@@ -38,18 +38,20 @@ from pathlib import Path
 import numpy as np
 
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
-from gripper.bench.execution import check_own_records, open_run, read_jsonl, run_ordered
+from gripper.bench.execution import check_own_records, check_same_run, open_run, read_jsonl, run_ordered
+from gripper.core.arguments import check_instance
 from gripper.core.atomic import write_atomic, write_csv_atomic, write_text_atomic
 from gripper.core.fields import Validated
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
+from gripper.core.ranges import SEED_MAX, TRIALS_MAX
 from gripper.drives import drive_for
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
 from gripper.experiments.trial import run_trial
 from gripper.objects.grasp_object import GraspObject
-from gripper.objects.library import DEFAULT_OBJECTS, get_object
+from gripper.objects.library import DEFAULT_OBJECTS, get_object, object_source
 
 
 def wilson_interval(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:
@@ -75,12 +77,19 @@ class BenchConfig(Validated):
     noise: TrialNoise = field(default_factory=TrialNoise)
 
     def validate(self) -> BenchConfig:
-        if not isinstance(self.trials, int) or self.trials < 1:
-            raise ValueError(f"trials: must be an integer >= 1, got {self.trials!r}")
-        if not isinstance(self.seed, int) or isinstance(self.seed, bool) or not 0 <= self.seed < 2**32:
-            raise ValueError(f"seed: must be an integer in [0, 2**32 - 1], got {self.seed!r}")
-        if not self.objects:
-            raise ValueError("objects: give at least one object")
+        for name, cls in (("params", GripperParams), ("protocol", GraspProtocol), ("noise", TrialNoise)):
+            if not isinstance(getattr(self, name), cls):
+                raise TypeError(f"{name}: expected a {cls.__name__}, got {type(getattr(self, name)).__name__}")
+        if isinstance(self.trials, bool) or not isinstance(self.trials, int) or not 1 <= self.trials <= TRIALS_MAX:
+            raise ValueError(f"trials: must be an integer in [1, {TRIALS_MAX:,}], got {self.trials!r}")
+        if not isinstance(self.seed, int) or isinstance(self.seed, bool) or not 0 <= self.seed <= SEED_MAX:
+            raise ValueError(f"seed: must be an integer in [0, {SEED_MAX:,}], got {self.seed!r}")
+        if isinstance(self.objects, str) or not isinstance(self.objects, tuple | list) or not self.objects \
+                or not all(isinstance(o, str) for o in self.objects):
+            raise ValueError(f"objects: give a non-empty tuple of object names, got {self.objects!r}")
+        if len(self.objects) * self.trials > TRIALS_MAX:
+            raise ValueError(f"trials: {len(self.objects)} objects × {self.trials:,} trials; at most {TRIALS_MAX:,} "
+                             "in one run")
         twice = sorted({o for o in self.objects if self.objects.count(o) > 1})
         if twice:
             raise ValueError(f"objects: {', '.join(twice)} listed more than once; give each once")
@@ -90,6 +99,12 @@ class BenchConfig(Validated):
                 raise ValueError(f"objects: {seen[name]!r} and {spec!r} are both named {name!r}; "
                                  "give each object of a run its own name")
             seen[name] = spec
+        sources: dict[tuple, str] = {}
+        for spec in self.objects:
+            src = object_source(spec)
+            if src in sources:
+                raise ValueError(f"objects: {sources[src]!r} and {spec!r} are the same object ({src[1]}); give it once")
+            sources[src] = spec
         self.params.validate()
         self.protocol.validate()
         self.noise.validate()
@@ -155,6 +170,7 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
     Raises:
         ValueError: bad configuration, or ``out`` holds a different configuration.
     """
+    check_instance("cfg", cfg, BenchConfig, optional=False)
     cfg.validate()
     run_hash = cfg.hash()
 
@@ -199,6 +215,7 @@ def _keep_trial_order(tpath: Path, jobs: list[tuple[str, int]]) -> None:
 def summarize(records: Sequence[Mapping], cfg: BenchConfig, wall_time_s: float = 0.0, resumed: int = 0) -> dict:
     """Per-object statistics of ``records`` (see the module docstring). ``wall_time_s`` is this
     call's; ``resumed`` counts the records it found in the folder from earlier calls."""
+    check_same_run(records, cfg.hash(), "summary")
     per = {}
     for obj in cfg.names():
         rs = [r for r in records if r["object"] == obj]

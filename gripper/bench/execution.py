@@ -72,6 +72,20 @@ def check_own_records(records: Sequence[Mapping], path: Path, run_hash: str, key
         seen.add(k)
 
 
+def check_same_run(records: Sequence[Mapping], run_hash: str, what: str) -> None:
+    """Refuse to summarise a record of another run: one whose ``run_config_hash`` is set and is
+    not ``run_hash`` (records made in memory, without one, are the caller's own).
+
+    Raises:
+        ValueError: naming the first foreign record.
+    """
+    for n, r in enumerate(records, start=1):
+        h = r.get("run_config_hash")
+        if h is not None and h != run_hash:
+            raise ValueError(f"{what}: record {n} ({r.get('trial_id', r.get('point', '?'))}) belongs to another run "
+                             f"(configuration {h}, this run's {run_hash}); it is not counted in this run's summary")
+
+
 # How long a --scheduler address may take to accept a connection before it counts as unreachable [s].
 SCHEDULER_TIMEOUT_S = 5.0
 
@@ -113,10 +127,10 @@ def open_run(out: str | Path, workers: int, scheduler: str | None, filename: str
     (:func:`folder_lock`: one writer per folder) and its claim (:func:`claim_run_dir`). A refused
     run leaves no folder behind. ``files``: the run's other files, each of which must be a
     writable regular file where it exists. ``check_records(repair)``: the command's check of the
-    folder's records against this run (:func:`check_own_records`), run before a folder that has
-    lost its ``filename`` is claimed anew (read-only: a torn last line may be another writer's),
-    so that a refusal writes nothing. Yields ``out`` as a path; the lock is released when the
-    run ends, however it ends."""
+    folder's records against this run (:func:`check_own_records`), run read-only before the lock
+    is taken (a torn last line may be another writer's), so that a refusal writes nothing, not
+    even the lock file, and the command runs it again, repairing, once it holds the folder.
+    Yields ``out`` as a path; the lock is released when the run ends, however it ends."""
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise ValueError(f"--workers: must be an integer >= 1, got {workers!r}")
     check_scheduler(scheduler)
@@ -128,7 +142,7 @@ def open_run(out: str | Path, workers: int, scheduler: str | None, filename: str
     if other:
         raise ValueError(f"--out: {out} holds {RUN_MARKERS[other[0]]}'s run ({other[0]}); choose another --out "
                          "folder")
-    if check_records is not None and not (out / filename).exists():
+    if check_records is not None and out.is_dir():  # read-only, so that a refusal touches nothing
         check_records(False)
     made = not out.exists()
     out.mkdir(parents=True, exist_ok=True)

@@ -38,7 +38,7 @@ import mujoco
 from gripper.core.atomic import write_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
-from gripper.core.user_files import read_user_text
+from gripper.core.user_files import parse_user_data, read_user_text
 
 SCHEMA = "gripper.calibration/1"
 PAPER_STIFFNESS_NM_PER_DEG = 1.9e-3  # paper 000, Table 2
@@ -95,11 +95,7 @@ class Calibration:
             ValueError: unreadable file, wrong schema, missing or non-numeric fields.
         """
         path = Path(path)
-        try:
-            data = json.loads(read_user_text(path, "calibration file"))
-        except json.JSONDecodeError as e:
-            raise ValueError(f"calibration file: {path.name} is not valid JSON: {e.msg} "
-                             f"(line {e.lineno})") from None
+        data = parse_user_data(read_user_text(path, "calibration file"), "json", f"calibration file {path.name}")
         if not isinstance(data, dict) or data.get("schema") != SCHEMA:
             got = data.get("schema") if isinstance(data, dict) else type(data).__name__
             raise ValueError(f"calibration file: schema must be {SCHEMA!r}, got {got!r}")

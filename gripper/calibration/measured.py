@@ -33,12 +33,12 @@ Example:
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 
 import numpy as np
 
+from gripper.core.user_files import read_user_csv
 from gripper.references.continuum import CLOSED_CUT_MARGIN_DEG, BendingRecord
 
 # Largest element angle accepted when the caller gives no closure angle [deg]: a full turn, past
@@ -73,14 +73,7 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
     """
     path = Path(path)
     name = path.name
-    try:
-        lines = [ln for ln in path.read_text().splitlines()
-                 if ln.strip() and not ln.lstrip().startswith("#")]
-    except OSError as e:
-        raise ValueError(f"data file: cannot read {str(path)!r}: {e.strerror}") from None
-    except UnicodeDecodeError:
-        raise ValueError(f"data file {name}: not a text CSV file") from None
-    rows = list(csv.reader(lines))
+    rows = read_user_csv(path, "data file")
     if not rows:
         raise ValueError(f"data file {name}: empty; need a header row with tension_N")
     header = [h.strip() for h in rows[0]]

@@ -22,9 +22,8 @@ import sys
 from collections.abc import Callable
 
 from gripper.core.fields import field_specs
+from gripper.core.ranges import SEED_MAX, TRIALS_MAX  # noqa: F401  (TRIALS_MAX: the commands import it here)
 
-SEED_MAX = 2**32 - 1
-TRIALS_MAX = 100_000
 WORKERS_MAX = 256
 MAX_SIMULATED_S = 600.0  # s: ten minutes of simulated time, hours of wall time for a flex object
 PIXELS = (16, 4096)
@@ -38,7 +37,17 @@ class OneLineParser(argparse.ArgumentParser):
         if action.option_strings and any(isinstance(a, str) and not a.strip() for a in arg_strings):
             hint = "" if action.required else "; leave the option out for its default"
             self.error(f"argument {'/'.join(action.option_strings)}: empty value{hint}")
+        if action.option_strings:
+            self._given.add(action.dest)
         return super()._get_values(action, arg_strings)
+
+    def parse_known_args(self, args=None, namespace=None):
+        """As argparse's, and the namespace's ``given`` holds the dests of the options the
+        command line gave (:func:`given`), so an option that does not apply can be refused."""
+        self._given: set[str] = set()
+        ns, extras = super().parse_known_args(args, namespace)
+        ns.__dict__.setdefault("given", set()).update(self._given)
+        return ns, extras
 
     def error(self, message: str):
         print(f"{self.prog}: error: {message} (see {self.prog} --help)", file=sys.stderr)
@@ -74,12 +83,18 @@ def _range_text(kind: type, lo: float | None, hi: float | None, lo_open: bool, h
     return f"{'<' if hi_open else '<='} {fmt(hi)}"
 
 
+def given(args: argparse.Namespace, dest: str) -> bool:
+    """Whether the command line gave option ``dest`` (not just its default)."""
+    return dest in getattr(args, "given", set())
+
+
 def number(p: argparse.ArgumentParser, flag: str, kind: type, *, lo: float | None = None,
            hi: float | None = None, lo_open: bool = False, hi_open: bool = False, help: str = "",
-           **kw) -> None:
+           range_help: str = "", **kw) -> None:
     """Add option ``flag`` of ``kind`` (int or float) bounded to [lo, hi] (``lo_open``,
-    ``hi_open``: the bound itself excluded); its help ends with the range and the default."""
-    rng = _range_text(kind, lo, hi, lo_open, hi_open)
+    ``hi_open``: the bound itself excluded); its help ends with the range (``range_help``, where
+    the command narrows it further) and the default."""
+    rng = range_help or _range_text(kind, lo, hi, lo_open, hi_open)
     default = "" if kw.get("default") is None else "; default %(default)s"
     p.add_argument(flag, type=_bounded(kind, lo, hi, lo_open, hi_open),
                    help=f"{help} ({rng}{default})".lstrip(), **kw)

@@ -7,15 +7,20 @@ from __future__ import annotations
 
 from gripper.bench.defaults import DEFAULT_WORKERS
 from gripper.bench.execution import check_scheduler
-from gripper.cli.inputs import WORKERS_MAX, field_option, names, number
+from gripper.cli.inputs import WORKERS_MAX, field_option, given, names, number
 from gripper.core.params import ACTUATIONS, GripperParams
 from gripper.experiments.protocol import APPROACHES, GRASP_CHOICES, POLICIES, GraspProtocol, TrialNoise
+
+# What --grip-pressure allows: the field's bound is the regulator class's, but a run refuses more
+# than the design's own pneumatic.pressure_max (the calibration's range), which the help says.
+GRIP_PRESSURE_RANGE = "in (0, pneumatic.pressure_max]: 250,000 for the default design"
 
 EXIT_BAD_INPUT = 2
 EXIT_UNSTABLE = 3
 EXIT_BROKEN_PIPE = 1
-EXIT_FAILED = 1  # the system failed a write (a full disk): not the input's fault
 EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report a command ended by Ctrl-C
+EXIT_TERMINATED = 143  # 128 + SIGTERM
+EXIT_FAILED = 1  # the run ended, but nothing it set out to measure was measured (every study point failed)
 
 
 def design(args, *, simulates: bool = True, cable_only: str | None = None) -> GripperParams:
@@ -78,7 +83,38 @@ def check_runner(args) -> None:
     check_scheduler(args.scheduler)
 
 
-def protocol_and_noise(args):
+def check_applies(args, params: GripperParams) -> None:
+    """Refuse, in one line naming it, an option the command line gave that this run would
+    ignore: a set-point of the other gripper, ``--close-scale`` under the controller, a set-point
+    under ``--policy per_object``, ``--no-centre`` with the catalogue approach,
+    ``--force-calibration`` without a calibration."""
+    kind = params.actuation.kind
+    if given(args, "grip_pressure") and kind != "pneumatic":
+        raise ValueError(f"--grip-pressure: sets the pneumatic gripper's chamber pressure; this run drives the {kind} "
+                         "gripper (add --actuation pneumatic, or leave --grip-pressure out)")
+    if given(args, "grip_tension") and kind != "cable":
+        raise ValueError(f"--grip-tension: sets the cable gripper's cable tension; this run drives the {kind} gripper "
+                         "(its set-point is --grip-pressure)")
+    policy = getattr(args, "policy", None)
+    for dest in ("grip_tension", "grip_pressure"):
+        if policy == "per_object" and given(args, dest):
+            flag = "--" + dest.replace("_", "-")
+            raise ValueError(f"{flag}: a set-point of --policy controller; --policy per_object closes each finger to "
+                             "the object's own command (scale it with --close-scale)")
+    if policy == "controller" and given(args, "close_scale"):
+        raise ValueError("--close-scale: scales --policy per_object's closing commands; the controller (the default "
+                         "policy) closes to its set-point (--grip-tension, --grip-pressure)")
+    if getattr(args, "approach", None) == "catalogue" and given(args, "no_centre"):
+        raise ValueError("--no-centre: applies to --approach sensed (the palm camera's centring); --approach "
+                         "catalogue places the palm by the object's catalogue size")
+    if given(args, "force_calibration") and not getattr(args, "calibration", None):
+        raise ValueError("--force-calibration: applies a --calibration made for another design; give --calibration "
+                         "FILE, or leave --force-calibration out")
+
+
+def protocol_and_noise(args, params: GripperParams):
+    """The protocol and noise the options give, once :func:`check_applies` has passed."""
+    check_applies(args, params)
     proto = GraspProtocol(close_command_scale=args.close_scale, release=args.release, policy=args.policy,
                           grip_tension=args.grip_tension, grip_pressure=args.grip_pressure, approach=args.approach,
                           grasp=args.grasp, centre=not args.no_centre).validate()
@@ -106,7 +142,8 @@ def with_protocol(p):
     field_option(p, "--grip-tension", GraspProtocol, "grip_tension",
                  "the controller's grip set-point: cable tension per finger [N]", metavar="N")
     field_option(p, "--grip-pressure", GraspProtocol, "grip_pressure",
-                 "the pneumatic gripper's grip set-point: chamber pressure [Pa]", metavar="PA")
+                 "the pneumatic gripper's grip set-point: chamber pressure [Pa]", metavar="PA",
+                 range_help=GRIP_PRESSURE_RANGE)
     field_option(p, "--close-scale", GraspProtocol, "close_command_scale",
                  "per_object: multiplier on each object's closing command, >1 squeezes harder")
     p.add_argument("--release", action="store_true", help="open the fingers at the end of each trial")

@@ -28,6 +28,11 @@ def write_atomic(out: Path, write: Callable[[str], object]) -> None:
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, out)
+    except OSError as e:
+        Path(tmp).unlink(missing_ok=True)
+        if e.filename is None:  # a write that failed (a full disk) names the file it was for
+            raise OSError(e.errno, e.strerror or str(e), str(out)) from None
+        raise
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise

@@ -27,6 +27,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar, Self
 
+from gripper.core.ranges import Range
+
 KINDS = ("number", "integer", "bool", "choice", "numbers")
 
 
@@ -54,6 +56,7 @@ class FieldSpec:
     choices: tuple[str, ...] | list[str] = ()
     source: str = ""
     allow_empty: bool = False
+    why: str = ""  # the reason for the range (gripper.core.ranges)
 
     def allowed(self) -> str:
         """The allowed values, as error messages and tables state them."""
@@ -102,7 +105,8 @@ class FieldSpec:
         if not math.isfinite(value):
             raise ValueError(f"{name}: must be finite, got {value!r}")
         if not self._in_bounds(value):
-            raise ValueError(f"{name}: must be {self.allowed()}, got {value!r}")
+            why = f" ({self.why})" if self.why else ""
+            raise ValueError(f"{name}: must be {self.allowed()}{why}, got {value!r}")
 
     def _in_bounds(self, v: float) -> bool:
         if self.lo is not None and (v <= self.lo if self.lo_open else v < self.lo):
@@ -114,13 +118,22 @@ def param(default: Any, unit: str, *, factory: Callable[[], Any] | None = None,
           gt: float | None = None, ge: float | None = None,
           lt: float | None = None, le: float | None = None, integer: bool = False,
           choices: tuple[str, ...] | list[str] = (), numbers: bool = False, allow_empty: bool = False,
-          source: str = "") -> Any:
+          source: str = "", within: Range | None = None) -> Any:
     """A dataclass field with its :class:`FieldSpec` (``gt``/``ge``: lower bound, exclusive or
     inclusive; ``lt``/``le``: upper bound). A bool default makes a flag, ``choices`` a choice,
     ``numbers`` a list of numbers (``allow_empty``: the list may be empty). ``factory`` (with
     ``default`` None) computes the default when an instance is made, not at import: defaults
     read from a committed data file. ``choices`` given as a
-    list stays that list (a registry that grows: its current entries are allowed)."""
+    list stays that list (a registry that grows: its current entries are allowed). ``within``: a
+    physical range of :mod:`gripper.core.ranges`, its reason stated in errors (``gt``/``ge`` and
+    ``lt``/``le`` given as well narrow it)."""
+    why = ""
+    if within is not None:
+        why = within.reason
+        if gt is None and ge is None:
+            gt, ge = (None, within.lo) if within.lo_closed else (within.lo, None)
+        if lt is None and le is None:
+            le = within.hi
     if isinstance(default, bool):
         kind = "bool"
     elif choices:
@@ -131,7 +144,7 @@ def param(default: Any, unit: str, *, factory: Callable[[], Any] | None = None,
         kind = "integer" if integer else "number"
     spec = FieldSpec(unit=unit, kind=kind, lo=gt if gt is not None else ge,
                      hi=lt if lt is not None else le, lo_open=gt is not None,
-                     hi_open=lt is not None, source=source, allow_empty=allow_empty,
+                     hi_open=lt is not None, source=source, allow_empty=allow_empty, why=why,
                      choices=choices if isinstance(choices, list) else tuple(choices))
     if factory is not None:
         return dataclasses.field(default_factory=factory, metadata={"spec": spec})

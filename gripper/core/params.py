@@ -23,8 +23,39 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Self
 
+from gripper.core.arguments import check_instance
 from gripper.core.atomic import write_text_atomic
 from gripper.core.fields import FieldSpec, Validated, check_fields, field_specs, param
+from gripper.core.ranges import (
+    BENDING_STIFFNESS,
+    CABLE_DIAMETER,
+    CABLE_FRICTION,
+    CABLE_MODULUS,
+    DAMPING_RATIO,
+    ELASTOMER_DENSITY,
+    ELASTOMER_MODULUS,
+    ELASTOMER_STRENGTH,
+    ELONGATION,
+    FINGER_ELEMENT,
+    FINGER_FEATURE,
+    FRICTION,
+    HINGE_DAMPING,
+    HINGE_STIFFNESS,
+    KNEE_CURVATURE,
+    MOMENT_PER_PASCAL,
+    PALM_MASS,
+    PALM_SIZE,
+    PNEUMATIC_LENGTH,
+    PNEUMATIC_MASS,
+    PNEUMATIC_SECTION,
+    ROOT_STIFFNESS,
+    SPEED,
+    SPOOL_RADIUS,
+    STAGE_FORCE,
+    STAGE_STIFFNESS,
+    STAGE_TRAVEL,
+    YEOH_COEFFICIENT,
+)
 from gripper.core.resources import DEFAULT_CALIBRATION_DIR, PNEUMATIC_CALIBRATION_DIR
 from gripper.core.units import DEG
 from gripper.core.user_files import read_user_data
@@ -121,17 +152,18 @@ class FingerGeometry(Validated):
 
     n_segments: int = param(6, "-", ge=2, le=64, integer=True,
                             source="paper 000 §III: six elements B1..B6, five spring hinges")
-    pitch: float = param(0.016, "m", gt=0, source="assumed: 96 mm fingers, about the paper's photographed fingers")
-    width: float = param(0.016, "m", gt=0, source="assumed")
-    height: float = param(0.018, "m", gt=0,
+    pitch: float = param(0.016, "m", within=FINGER_ELEMENT,
+                         source="assumed: 96 mm fingers, about the paper's photographed fingers")
+    width: float = param(0.016, "m", within=FINGER_ELEMENT, source="assumed")
+    height: float = param(0.018, "m", within=FINGER_ELEMENT,
                           source="assumed: room for the bridge, a 6 mm hole and 3 mm of wall")
     cut_angle_deg: float = param(45.0, "deg", gt=0, lt=90, source="paper 000 §II: 45°")
     bridge_thickness: float = param(
-        0.0019, "m", gt=0, source="root-find: the bridge at which the converged continuum body has "
+        0.0019, "m", within=FINGER_FEATURE, source="root-find: the bridge at which the converged continuum body has "
         "Table 2's spring read per radian (docs/consistency.md)")
-    hole_height: float = param(0.012, "m", gt=0,
+    hole_height: float = param(0.012, "m", within=FINGER_FEATURE,
                                source="assumed: 10.1 mm above the bridge (brief: 8-10 mm), 11.05 mm lever arm")
-    hole_diameter: float = param(0.006, "m", gt=0, source="paper 000 §II: 6 mm")
+    hole_diameter: float = param(0.006, "m", within=FINGER_FEATURE, source="paper 000 §II: 6 mm")
     extension_limit_deg: float = param(5.0, "deg", ge=0, le=90,
                                        source="assumed: the bridge and closed back face resist extension")
 
@@ -208,16 +240,16 @@ class Material(Validated):
 
     SECTION = "material"
 
-    density: float = param(1120.0, "kg/m³", gt=0, source="paper 000 Table 1: 1.12 g/cm³")
-    youngs_modulus: float = param(0.44e6, "Pa", gt=0, source="paper 000 Table 2: 0.44 MPa")
+    density: float = param(1120.0, "kg/m³", within=ELASTOMER_DENSITY, source="paper 000 Table 1: 1.12 g/cm³")
+    youngs_modulus: float = param(0.44e6, "Pa", within=ELASTOMER_MODULUS, source="paper 000 Table 2: 0.44 MPa")
     poisson_ratio: float = param(0.48, "-", gt=-1, lt=0.5, source="paper 000 Table 2: 0.48")
     shore_a: float = param(20.0, "Shore A", ge=0, le=100, source="paper 000 Table 1: 20 ± 2 A")
-    tensile_strength: float = param(4.0e6, "Pa", gt=0, source="paper 000 Table 1: 4 MPa")
-    elongation_at_break: float = param(5.0, "-", gt=0, source="paper 000 Table 1: >= 500 %")
-    yeoh_c10: float = param(RTV230_YEOH[0], "Pa", source=RTV230_YEOH_SOURCE)
-    yeoh_c20: float = param(RTV230_YEOH[1], "Pa", source=RTV230_YEOH_SOURCE)
-    yeoh_c30: float = param(RTV230_YEOH[2], "Pa", source=RTV230_YEOH_SOURCE)
-    friction: float = param(1.0, "-", gt=0,
+    tensile_strength: float = param(4.0e6, "Pa", within=ELASTOMER_STRENGTH, source="paper 000 Table 1: 4 MPa")
+    elongation_at_break: float = param(5.0, "-", within=ELONGATION, source="paper 000 Table 1: >= 500 %")
+    yeoh_c10: float = param(RTV230_YEOH[0], "Pa", within=YEOH_COEFFICIENT, source=RTV230_YEOH_SOURCE)
+    yeoh_c20: float = param(RTV230_YEOH[1], "Pa", within=YEOH_COEFFICIENT, source=RTV230_YEOH_SOURCE)
+    yeoh_c30: float = param(RTV230_YEOH[2], "Pa", within=YEOH_COEFFICIENT, source=RTV230_YEOH_SOURCE)
+    friction: float = param(1.0, "-", within=FRICTION,
                             source="assumed: soft silicone on dry plastic, paper, latex is 0.8-1.5")
 
 
@@ -251,14 +283,16 @@ class HingeSprings(Validated):
 
     SECTION = "springs"
 
-    stiffness: tuple[float, ...] = param(None, "N·m/rad", factory=_spring("stiffness"), gt=0, numbers=True,
+    stiffness: tuple[float, ...] = param(None, "N·m/rad", factory=_spring("stiffness"), within=HINGE_STIFFNESS,
+                                         numbers=True,
                                          source="fitted: the committed calibration")
-    damping: tuple[float, ...] = param(None, "N·m·s/rad", factory=_spring("damping"), ge=0, numbers=True,
+    damping: tuple[float, ...] = param(None, "N·m·s/rad", factory=_spring("damping"), within=HINGE_DAMPING,
+                                       numbers=True,
                                        source="fitted: the committed calibration")
     rest_angle_deg: tuple[float, ...] = param(None, "deg", factory=_spring("rest_angle_deg"), gt=-90, lt=90,
                                               numbers=True, source="fitted: the committed calibration")
     closure: str = param("teeth", "-", choices=CLOSURE_MODELS, source="gripper.drives.cable.closure")
-    closure_stiffness: float = param(1.0, "N·m/rad", gt=0,
+    closure_stiffness: float = param(1.0, "N·m/rad", within=HINGE_STIFFNESS,
                                      source="assumed: a placeholder of the teeth estimate's order")
 
     @classmethod
@@ -320,10 +354,10 @@ class Cable(Validated):
 
     SECTION = "cable"
 
-    diameter: float = param(0.5e-3, "m", gt=0, source="paper 000 §II: Ø 0.5 mm")
-    youngs_modulus: float = param(50e9, "Pa", gt=0,
+    diameter: float = param(0.5e-3, "m", within=CABLE_DIAMETER, source="paper 000 §II: Ø 0.5 mm")
+    youngs_modulus: float = param(50e9, "Pa", within=CABLE_MODULUS,
                                   source="assumed: UHMW-PE fibre is 100-120 GPa, a braid about half")
-    friction_loss: float = param(0.0, "N", ge=0, source="assumed: a 0.5 mm cable loose in 6 mm holes")
+    friction_loss: float = param(0.0, "N", within=CABLE_FRICTION, source="assumed: a 0.5 mm cable loose in 6 mm holes")
 
     @property
     def axial_stiffness(self) -> float:
@@ -348,12 +382,12 @@ class ServoParams(Validated):
 
     preset: str = param("hobby_6v", "-", choices=tuple(SERVO_PRESETS),
                         source="the datasheets in gripper.datasheets.servo")
-    spool_radius: float = param(0.020, "m", gt=0,
+    spool_radius: float = param(0.020, "m", within=SPOOL_RADIUS,
                                 source="assumed: 180° of travel reels in 63 mm, enough to close every cut")
     saturation_error_deg: float = param(0.6, "deg", gt=0, lt=90,
                                         source="assumed: about a hobby servo's dead band")
-    damping_ratio: float = param(1.0, "-", gt=0, source="assumed: a critically damped position loop")
-    contraction_speed: float = param(0.0, "m/s", ge=0,
+    damping_ratio: float = param(1.0, "-", within=DAMPING_RATIO, source="assumed: a critically damped position loop")
+    contraction_speed: float = param(0.0, "m/s", within=SPEED,
                                      source="0: the servo's no-load speed times the spool radius")
 
     @property
@@ -387,12 +421,12 @@ class GripperLayout(Validated):
     SECTION = "layout"
 
     n_fingers: int = param(4, "-", ge=1, le=12, integer=True, source="paper 000 §V: four fingers")
-    palm_radius: float = param(0.040, "m", gt=0,
+    palm_radius: float = param(0.040, "m", within=PALM_SIZE,
                                source="assumed: an 80 mm opening takes every object of the grasp set")
-    palm_thickness: float = param(0.020, "m", gt=0, source="assumed: a 3D-printed hub")
+    palm_thickness: float = param(0.020, "m", within=PALM_SIZE, source="assumed: a 3D-printed hub")
     mount_tilt_deg: float = param(0.0, "deg", ge=-45, le=45,
                                   source="assumed: fingers hang straight, as in the paper's photograph")
-    palm_mass: float = param(0.35, "kg", gt=0, source="assumed: four 55 g servos and a printed hub")
+    palm_mass: float = param(0.35, "kg", within=PALM_MASS, source="assumed: four 55 g servos and a printed hub")
 
 
 @dataclass(frozen=True)
@@ -413,13 +447,13 @@ class LiftAxis(Validated):
 
     SECTION = "lift"
 
-    z_travel: float = param(0.25, "m", gt=0, source="assumed: ±0.25 m")
+    z_travel: float = param(0.25, "m", within=STAGE_TRAVEL, source="assumed: ±0.25 m")
     xy_enabled: bool = param(True, "-", source="needed to shake the object")
-    xy_travel: float = param(0.05, "m", gt=0, source="assumed: ±0.05 m")
-    stiffness: float = param(4000.0, "N/m", gt=0, source="assumed: 1 mm of error per 4 N")
-    damping_ratio: float = param(1.0, "-", gt=0, source="assumed: critically damped with the palm mass")
-    max_force: float = param(60.0, "N", gt=0, source="assumed: a small linear stage")
-    home_height: float = param(0.25, "m", gt=0,
+    xy_travel: float = param(0.05, "m", within=STAGE_TRAVEL, source="assumed: ±0.05 m")
+    stiffness: float = param(4000.0, "N/m", within=STAGE_STIFFNESS, source="assumed: 1 mm of error per 4 N")
+    damping_ratio: float = param(1.0, "-", within=DAMPING_RATIO, source="assumed: critically damped with the palm mass")
+    max_force: float = param(60.0, "N", within=STAGE_FORCE, source="assumed: a small linear stage")
+    home_height: float = param(0.25, "m", within=STAGE_TRAVEL,
                                source="assumed: 96 mm fingers clear a 100 mm object with room to approach")
 
 
@@ -485,16 +519,22 @@ class PneumaticFinger(Validated):
 
     n_segments: int = param(8, "-", ge=3, le=64, integer=True,
                             source="assumed: seven hinges 20 mm apart, about the cable finger's 16 mm elements")
-    length: float = param(None, "m", factory=_pneumatic("length"), gt=0, source=_PN_SHAPE)
-    width: float = param(None, "m", factory=_pneumatic("width"), gt=0, source=_PN_SHAPE)
-    height: float = param(None, "m", factory=_pneumatic("height"), gt=0, source=_PN_SHAPE)
-    neutral_height: float = param(None, "m", factory=_pneumatic("neutral_height"), gt=0, source=_PN_SHAPE)
-    mass: float = param(None, "kg", factory=_pneumatic("mass"), gt=0, source=_PN_SHAPE)
-    bending_stiffness: float = param(None, "N·m²", factory=_pneumatic("bending_stiffness"), gt=0, source=_PN_CAL)
-    stiffening: float = param(None, "N·m²", factory=_pneumatic("stiffening"), ge=0, source=_PN_CAL)
-    root_stiffness: float = param(None, "N·m/rad", factory=_pneumatic("root_stiffness"), gt=0, source=_PN_CAL)
-    knee_curvature: float = param(None, "1/m", factory=_pneumatic("knee_curvature"), ge=0, source=_PN_CAL)
-    moment_per_pascal: float = param(None, "N·m/Pa", factory=_pneumatic("moment_per_pascal"), gt=0, source=_PN_CAL)
+    length: float = param(None, "m", factory=_pneumatic("length"), within=PNEUMATIC_LENGTH, source=_PN_SHAPE)
+    width: float = param(None, "m", factory=_pneumatic("width"), within=PNEUMATIC_SECTION, source=_PN_SHAPE)
+    height: float = param(None, "m", factory=_pneumatic("height"), within=PNEUMATIC_SECTION, source=_PN_SHAPE)
+    neutral_height: float = param(None, "m", factory=_pneumatic("neutral_height"), within=PNEUMATIC_SECTION,
+                                  source=_PN_SHAPE)
+    mass: float = param(None, "kg", factory=_pneumatic("mass"), within=PNEUMATIC_MASS, source=_PN_SHAPE)
+    bending_stiffness: float = param(None, "N·m²", factory=_pneumatic("bending_stiffness"), within=BENDING_STIFFNESS,
+                                     source=_PN_CAL)
+    stiffening: float = param(None, "N·m²", factory=_pneumatic("stiffening"), ge=0, within=BENDING_STIFFNESS,
+                              source=_PN_CAL)
+    root_stiffness: float = param(None, "N·m/rad", factory=_pneumatic("root_stiffness"), within=ROOT_STIFFNESS,
+                                  source=_PN_CAL)
+    knee_curvature: float = param(None, "1/m", factory=_pneumatic("knee_curvature"), within=KNEE_CURVATURE,
+                                  source=_PN_CAL)
+    moment_per_pascal: float = param(None, "N·m/Pa", factory=_pneumatic("moment_per_pascal"),
+                                     within=MOMENT_PER_PASCAL, source=_PN_CAL)
     damping_ratio: float = param(0.5, "-", gt=0, le=10,
                                  source="assumed: paper 000 Table 2's modal damping ratio of its silicone finger")
     regulator: str = param("smc_itv0030", "-", choices=tuple(REGULATOR_PRESETS),
@@ -721,8 +761,9 @@ class GripperParams(Validated):
 
         Raises:
             ValueError: unreadable or malformed file, or invalid values.
+            TypeError: ``path`` is not a path.
         """
-        path = Path(path)
+        path = Path(check_instance("path", path, (str, Path), optional=False))
         data = read_user_data(path, "parameter file")
         if not data:
             raise ValueError(f"parameter file: {path} sets no parameter; give the fields to change "

@@ -7,12 +7,14 @@ from __future__ import annotations
 
 import dataclasses
 import os
+from pathlib import Path
 from typing import Any
 
 import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
+from gripper.core.arguments import check_instance
 from gripper.core.params import GripperParams
 from gripper.envs.config import EnvConfig
 from gripper.envs.registration import ENV_ID
@@ -62,7 +64,11 @@ def make_config(**kwargs: Any) -> EnvConfig:
     if params is None:
         params = GripperParams()
     elif not isinstance(params, GripperParams):
-        params = GripperParams.load(params)
+        check_instance("params", params, (str, Path), optional=False)
+        try:
+            params = GripperParams.load(params)
+        except ValueError as e:
+            raise ValueError(f"params: {e}") from None
     actuation = kwargs.pop("actuation", None)
     if actuation is not None:  # the fingers: "cable" or "pneumatic" (GripperParams.actuation)
         params = params.replace(actuation=params.actuation.replace(kind=actuation)).validate()

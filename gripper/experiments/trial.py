@@ -26,9 +26,11 @@ from typing import Any
 import mujoco
 import numpy as np
 
+from gripper.core.arguments import check_instance, check_int
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
+from gripper.core.ranges import INDEX_MAX, SEED_MAX
 from gripper.drives import Drive, drive_for
 from gripper.drives.cable.sensing import ServoSensing
 from gripper.experiments.approach import ApproachPlan, fingertip_palm_z, plan_approach
@@ -81,6 +83,13 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
     the record gets ``status = "error"`` and the message, and counts neither as success nor
     failure.
     """
+    check_instance("obj", obj, (str, GraspObject), optional=False)
+    check_int("seed", seed, 0, SEED_MAX)
+    check_int("index", index, 0, INDEX_MAX)
+    for name, value, cls in (("params", params, GripperParams), ("protocol", protocol, GraspProtocol),
+                             ("noise", noise, TrialNoise), ("placement", placement, Placement),
+                             ("sensing", sensing, ServoSensing), ("camera", camera, DepthCamera)):
+        check_instance(name, value, cls)
     obj = get_object(obj) if isinstance(obj, str) else obj.validate()
     proto = (protocol or GraspProtocol()).validate()
     p = (params or GripperParams()).validate()

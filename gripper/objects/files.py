@@ -46,11 +46,13 @@ from pathlib import Path
 from typing import Any
 
 from gripper.core.fields import check_safe_name
+from gripper.core.ranges import OBJECT_DENSITY
 from gripper.core.user_files import read_user_data
 from gripper.objects.grasp_object import (
     DAMAGE_CRITERIA,
     DEFAULT_MESH_POINTS,
     KINDS,
+    MATERIAL_NEEDS,
     MESH_POINTS_RANGE,
     RIGID_KINDS,
     GraspObject,
@@ -68,9 +70,6 @@ SECTIONS: dict[str, tuple[str, ...] | None] = {
 }
 # The criterion a deformable kind is damaged by (the project models one per kind).
 OWN_CRITERION = {"balloon": "strain", "bag": "strain", "zipper_bag": "strain", "paper_box": "dent"}
-MATERIAL_NEEDS = {"balloon": ("youngs_modulus",), "bag": ("youngs_modulus", "thickness"),
-                  "zipper_bag": ("youngs_modulus", "thickness"),
-                  "paper_box": ("youngs_modulus", "thickness", "yield_strain")}
 
 
 def load_object_file(path: str | Path) -> GraspObject:
@@ -144,6 +143,8 @@ def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspO
         raise fail("object.mass", "give exactly one of mass [kg] or density [kg/m³]")
     if density is not None and kind not in RIGID_KINDS:
         raise fail("object.density", f"a {kind} takes its mass, not a density")
+    if density is not None:
+        OBJECT_DENSITY.check(f"{where}: object.density", density)
     friction = get(obj, "object", "friction", "number", required=True)
     yaw_symmetric = get(obj, "object", "yaw_symmetric", "bool",
                         default=kind in ("rigid_cylinder", "rigid_sphere", "balloon"))

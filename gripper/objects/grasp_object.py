@@ -19,6 +19,16 @@ import math
 from dataclasses import dataclass
 
 from gripper.core.fields import Validated, check_safe_name
+from gripper.core.ranges import (
+    CLOSE_COMMAND,
+    DAMAGE_LIMIT,
+    FILM_THICKNESS,
+    FRICTION,
+    OBJECT_HALF_EXTENT,
+    OBJECT_MASS,
+    OBJECT_MODULUS,
+    YIELD_STRAIN,
+)
 
 # Damage criteria: what is measured, its unit, and the kinds it applies to.
 DAMAGE_CRITERIA = {
@@ -28,6 +38,10 @@ DAMAGE_CRITERIA = {
     "contact_force": ("peak total contact force [N]", ("rigid_box", "rigid_cylinder", "rigid_sphere", "mesh")),
     "none": ("not damaged by grasping", ("rigid_box", "rigid_cylinder", "rigid_sphere", "mesh")),
 }
+# The material fields each deformable kind is made of (the rigid kinds have none).
+MATERIAL_NEEDS = {"balloon": ("youngs_modulus",), "bag": ("youngs_modulus", "thickness"),
+                  "zipper_bag": ("youngs_modulus", "thickness"),
+                  "paper_box": ("youngs_modulus", "thickness", "yield_strain")}
 RIGID_KINDS = ("rigid_box", "rigid_cylinder", "rigid_sphere", "mesh")
 KINDS = (*RIGID_KINDS, "balloon", "paper_box", "bag", "zipper_bag")
 # The deformable kinds' default mesh resolution (points along x, y, z; GraspObject.mesh_points),
@@ -159,19 +173,19 @@ class GraspObject(Validated):
         if self.kind not in KINDS:
             raise ValueError(f"{where}.kind: must be one of {', '.join(KINDS)}, got {self.kind!r}")
         for i, s in enumerate(self.size):
-            if not (isinstance(s, int | float) and math.isfinite(s) and s > 0):
-                raise ValueError(f"{where}.size[{i}]: must be > 0 m, got {s!r}")
-        for field_name in ("mass", "friction", "close_command"):
-            v = getattr(self, field_name)
-            if isinstance(v, bool) or not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
-                raise ValueError(f"{where}.{field_name}: must be > 0, got {v!r}")
+            OBJECT_HALF_EXTENT.check(f"{where}.size[{i}]", s)
+        OBJECT_MASS.check(f"{where}.mass", self.mass)
+        FRICTION.check(f"{where}.friction", self.friction)
+        CLOSE_COMMAND.check(f"{where}.close_command", self.close_command)
         if self.damage not in DAMAGE_CRITERIA or self.kind not in DAMAGE_CRITERIA[self.damage][1]:
             allowed = [c for c, (_, kinds) in DAMAGE_CRITERIA.items() if self.kind in kinds]
             raise ValueError(f"{where}.damage: a {self.kind} allows {', '.join(allowed)}, got {self.damage!r}")
-        v = self.damage_limit
-        if self.damage != "none" and (isinstance(v, bool) or not (isinstance(v, int | float)
-                                                                 and math.isfinite(v) and v > 0)):
-            raise ValueError(f"{where}.damage_limit: must be > 0, got {v!r}")
+        if self.damage != "none":
+            DAMAGE_LIMIT[self.damage].check(f"{where}.damage_limit", self.damage_limit)
+        for key, rng in (("youngs_modulus", OBJECT_MODULUS), ("thickness", FILM_THICKNESS),
+                         ("yield_strain", YIELD_STRAIN)):
+            if key in MATERIAL_NEEDS.get(self.kind, ()):
+                rng.check(f"{where}.{key}", getattr(self, key))
         pts = self.mesh_points
         if not (isinstance(pts, tuple) and len(pts) == 3
                 and all(isinstance(n, int) and not isinstance(n, bool) for n in pts)):

@@ -14,6 +14,8 @@ Example:
 from __future__ import annotations
 
 import dataclasses
+import os
+from pathlib import Path
 
 from gripper.core.resources import OBJECTS_DIR
 from gripper.objects.files import load_object_file
@@ -68,7 +70,11 @@ def get_object(spec: str) -> GraspObject:
                                  f"got {mass_text!r}") from None
         return dataclasses.replace(mesh_object(path, mass=mass), name=spec).validate()
     if spec.endswith((".toml", ".json")):
-        return load_object_file(spec)
+        obj = load_object_file(spec)
+        if obj.name in library() and Path(spec).resolve().parent != OBJECTS_DIR.resolve():
+            raise ValueError(f"objects: {spec}: object.name {obj.name!r} is a built-in object's name; its records "
+                             "would mix with the built-in's: give it a name of its own")
+        return obj
     lib = library()
     if spec not in lib:
         raise ValueError(f"objects: unknown object {spec!r}; allowed: {', '.join(lib)}, an object "
@@ -76,5 +82,16 @@ def get_object(spec: str) -> GraspObject:
     return lib[spec]
 
 
+def object_source(spec: str) -> tuple:
+    """What ``spec`` reads, whatever its spelling: ("builtin", name), ("file", real path) or
+    ("mesh", real path, mass); two specs of one run with the same source are one object twice."""
+    if spec.startswith("mesh:"):
+        path, _, mass = spec[len("mesh:"):].partition("::")
+        return ("mesh", os.path.realpath(path), float(mass) if mass else None)
+    if spec.endswith((".toml", ".json")):
+        return ("file", os.path.realpath(spec))
+    return ("builtin", spec)
+
+
 __all__ = ["DEFAULT_MESH_DENSITY", "DEFAULT_OBJECTS", "EXTRA_OBJECTS", "LIBRARY", "RIGID_CLOSE", "get_object",
-           "library", "load_mesh", "mesh_object"]
+           "library", "load_mesh", "mesh_object", "object_source"]

@@ -9,10 +9,12 @@ Example:
 
 from __future__ import annotations
 
+import io
 import math
 import warnings
 from pathlib import Path
 
+from gripper.core.user_files import MAX_MESH_BYTES, read_user_bytes
 from gripper.objects.grasp_object import GraspObject
 
 # The rigid objects' closing command: near the end of the servo's travel (π) and past full finger
@@ -28,6 +30,8 @@ RIGID_CLOSE = 3.0
 DEFAULT_MESH_DENSITY = 620.0
 
 
+MESH_SUFFIXES = ("stl", "obj", "ply")  # the formats trimesh reads without extra packages
+
 def load_mesh(path: str | Path, *, repair: bool = True):
     """Load an STL/OBJ/PLY with trimesh; repair small holes (with a warning) or refuse.
 
@@ -37,10 +41,12 @@ def load_mesh(path: str | Path, *, repair: bool = True):
     import trimesh
 
     path = Path(path)
-    if not path.is_file():
-        raise ValueError(f"mesh: file not found or unreadable: {path}")
+    suffix = path.suffix.lower().lstrip(".")
+    if suffix not in MESH_SUFFIXES:
+        raise ValueError(f"mesh: {path}: the name must end in {', '.join('.' + s for s in MESH_SUFFIXES)}")
+    data = read_user_bytes(path, "mesh", MAX_MESH_BYTES)  # a regular file of bounded size
     try:
-        mesh = trimesh.load(path, force="mesh")
+        mesh = trimesh.load(io.BytesIO(data), file_type=suffix, force="mesh")
     except Exception as e:  # trimesh raises many types for malformed files
         raise ValueError(f"mesh: cannot read {path} as STL/OBJ/PLY ({e})") from None
     if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:

@@ -16,6 +16,7 @@ Example:
 
 from __future__ import annotations
 
+import errno
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -151,7 +152,14 @@ def write_video(frames: np.ndarray, out: str | Path, fps: float) -> None:
     out = check_output_path(out)
     mediapy.set_ffmpeg(imageio_ffmpeg.get_ffmpeg_exe())
     codec = "gif" if out.suffix.lower() == ".gif" else "h264"
-    write_atomic(out, lambda tmp: mediapy.write_video(tmp, frames, fps=fps, codec=codec))
+
+    def encode(tmp: str) -> None:
+        try:
+            mediapy.write_video(tmp, frames, fps=fps, codec=codec)
+        except RuntimeError as e:  # ffmpeg could not write (a full disk, a file size limit)
+            detail = str(e).partition(": ")[2].strip() or "ffmpeg stopped writing: is the disk full?"
+            raise OSError(errno.EIO, f"the video could not be written ({detail[:120]})", str(out)) from None
+    write_atomic(out, encode)
 
 
 def record_trial_video(obj, out: str | Path, *, seed: int = 0, index: int = 0, params=None, protocol=None,

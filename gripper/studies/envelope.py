@@ -24,6 +24,7 @@ from gripper.bench.defaults import DEFAULT_WORKERS
 from gripper.core.atomic import write_atomic, write_csv_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
+from gripper.core.ranges import SEED_MAX, TRIALS_MAX
 from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import read_user_data
 from gripper.drives import drive_for
@@ -64,8 +65,12 @@ class Envelope:
                 raise fail(key, f"each value once, got {list(vals)!r}")
         if isinstance(self.trials, bool) or not isinstance(self.trials, int) or not 1 <= self.trials <= 1000:
             raise fail("trials", f"must be an integer in [1, 1000], got {self.trials!r}")
-        if isinstance(self.seed, bool) or not isinstance(self.seed, int):
-            raise fail("seed", f"must be an integer, got {self.seed!r}")
+        if isinstance(self.seed, bool) or not isinstance(self.seed, int) or not 0 <= self.seed <= SEED_MAX:
+            raise fail("seed", f"must be an integer in [0, {SEED_MAX:,}], got {self.seed!r}")
+        total = len(self.points()) * self.trials
+        if total > TRIALS_MAX:
+            raise fail("trials", f"{len(self.points()):,} points × {self.trials} trials = {total:,} trials; at most "
+                       f"{TRIALS_MAX:,} (a day of trials on one core)")
         drive = drive_for(self.params)
         try:
             drive.check_set_point(self.protocol())
@@ -118,6 +123,12 @@ def load_envelope(path: str | Path, **overrides) -> Envelope:
     if unknown:
         raise ValueError(f"envelope.{unknown[0]}: unknown key; allowed: {', '.join(KEYS)}")
     spec.update({k: v for k, v in overrides.items() if v is not None})
+    params = spec.get("params", GripperParams())
+    own = drive_for(params).set_point_field
+    for key in ("grip_tension", "grip_pressure"):
+        if key in spec and key != own:
+            raise ValueError(f"envelope.{key} (--{key.replace('_', '-')}): a set-point of the other gripper; this "
+                             f"envelope runs the {params.actuation.kind} gripper, whose set-point is {own}")
     for key in ("shapes", "sizes", "masses", "frictions"):
         if key in spec:
             if not isinstance(spec[key], list | tuple):
@@ -195,6 +206,9 @@ def held_fractions(records: list[dict]) -> dict[int, float | None]:
 
 def summarize(records: list[dict], env: Envelope) -> dict:
     """Per shape and friction: the success map, the gripping range and the payload."""
+    from gripper.bench.execution import check_same_run
+
+    check_same_run(records, env.hash(), "summary")
     pts = env.points()
     frac_of = held_fractions(records)
     out: dict = {"grip_tension_N": env.grip_tension, "held_fraction": HELD_FRACTION, "shapes": {},

@@ -11,6 +11,7 @@ Example:
 
 from __future__ import annotations
 
+import json
 import time
 from pathlib import Path
 from typing import Any
@@ -22,11 +23,13 @@ from gripper.experiments.design_responses import measure_responses
 from gripper.studies.study_file import ActuatorDesign, Study, apply_point, metric_names
 
 
-def run_point(study: Study, index: int, changes: dict) -> dict:
+def run_point(study: Study, index: int, changes: dict, run_hash: str | None = None) -> dict:
     """Every response of one design point (:func:`gripper.experiments.design_responses.measure_responses`);
-    errors are recorded, not raised."""
+    errors are recorded, not raised. ``run_hash``: the study's, kept in the record so that a
+    resume can tell the study's own records from another's."""
     t0 = time.perf_counter()
-    rec: dict[str, Any] = {"point": index, "changes": changes, "status": "ok", "metrics": {}, "curves": {}}
+    rec: dict[str, Any] = {"point": index, "changes": changes, "status": "ok", "metrics": {}, "curves": {},
+                           "run_config_hash": run_hash}
     try:
         p, reasons = apply_point(study.base, changes)
         rec["calibrated"] = not reasons
@@ -52,14 +55,27 @@ RUN_FILES = ("study.json", "results.jsonl", "results.csv", "recommendations.md")
 def run_study(study: Study, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
               progress: bool = True) -> list[dict]:
     """Run (or resume) the study into ``out``; write the table, plots and recommendations."""
-    from gripper.bench.execution import open_run, read_jsonl, run_ordered
+    from gripper.bench.execution import check_own_records, open_run, read_jsonl, run_ordered
 
-    with open_run(out, workers, scheduler, "study.json", "study", study.hash(), study.identity(),
-                  "another study", RUN_FILES) as out:
+    run_hash = study.hash()
+    points = study.design_points()
+
+    def own_records(path: Path, repair: bool = True) -> list[dict]:
+        records = read_jsonl(path, repair=repair)
+        check_own_records(records, path, run_hash, lambda r: r.get("point"), lambda r: f"point {r.get('point')}")
+        for n, r in enumerate(records, start=1):
+            if r.get("point") not in range(len(points)) or \
+                    json.dumps(r.get("changes"), sort_keys=True) != json.dumps(points[r["point"]], sort_keys=True):
+                raise ValueError(f"--out: {path}: record {n} (point {r.get('point')}) is not a point of this study; "
+                                 "choose another --out folder")
+        return records
+
+    with open_run(out, workers, scheduler, "study.json", "study", run_hash, study.identity(),
+                  "another study", RUN_FILES,
+                  check_records=lambda repair: own_records(Path(out) / "results.jsonl", repair)) as out:
         path = out / "results.jsonl"
-        points = study.design_points()
-        done = {r["point"]: r for r in read_jsonl(path)}
-        todo = [(study, i, pt) for i, pt in enumerate(points) if i not in done]
+        done = {r["point"]: r for r in own_records(path)}
+        todo = [(study, i, pt, run_hash) for i, pt in enumerate(points) if i not in done]
         run_ordered(todo, run_point, path, workers=workers, scheduler=scheduler,
                     on_record=lambda rec: done.__setitem__(rec["point"], rec),
                     progress=(len(points), len(points) - len(todo), "design points") if progress else None)

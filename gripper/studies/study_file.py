@@ -24,7 +24,6 @@ import dataclasses
 import itertools
 import math
 import re
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -32,8 +31,9 @@ import numpy as np
 
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
+from gripper.core.ranges import SEED_MAX, TRIALS_MAX
 from gripper.core.resources import STUDIES_DIR
-from gripper.core.user_files import read_user_text
+from gripper.core.user_files import parse_user_data, read_user_text
 from gripper.drives import drive_class, drive_for
 from gripper.experiments.protocol import GraspProtocol
 from gripper.objects.envelope_objects import SHAPES
@@ -54,7 +54,14 @@ RESPONSES: dict[str, dict[str, type]] = {
 }
 # upper bounds of response options: the actuator model's pressure range (PneumaticActuator.pressure_max's
 # bound), load steps, and the finest mesh that fits this machine's memory (refinement 8: ~600k unknowns)
-RESPONSE_LIMITS = {"inflation": {"pressure_max": 1e6, "steps": 100, "refinement": 8}}
+RESPONSE_LIMITS = {"inflation": {"pressure_max": 1e6, "steps": 100, "refinement": 8},
+                   # trials per object (per width, for the envelope) and a bending run's length [s]
+                   # (ten minutes of simulated time, the command line's MAX_SIMULATED_S)
+                   "grasp": {"trials": 1000}, "holding_force": {"trials": 1000}, "envelope": {"trials": 100},
+                   "bending": {"duration": 600.0}}
+# Design points in one study: a factorial of 13 parameters at two levels; a study's trials in all
+# (points × each point's trials) at most TRIALS_MAX, a day of trials on one core.
+POINTS_MAX = 10_000
 MODEL_RESPONSES = {"gripper": ("bending", "tension_for_angle", "blocked_force", "grasp", "holding_force", "envelope"),
                    "actuator": ("inflation",)}
 
@@ -300,10 +307,7 @@ def load_study(path: str | Path) -> Study:
     if not path.exists() and path.suffix == "" and path.parent == Path(".") and shipped.is_file():
         path = shipped
     text = read_user_text(path, "study")
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as e:
-        raise ValueError(f"study: {path} is not valid TOML ({e})") from None
+    data = parse_user_data(text, "toml", f"study: {path}")
 
     def err(key, msg):
         line = _key_line(text, key.split(".")[-1] if key.startswith("responses.") else key)
@@ -346,10 +350,11 @@ def load_study(path: str | Path) -> Study:
             raise err("base", str(e)) from None
     points = st.get("points", 0)
     seed = st.get("seed", 0)
-    if not isinstance(seed, int) or isinstance(seed, bool):
-        raise err("seed", f"must be an integer, got {seed!r}")
-    if design == "latin_hypercube" and (not isinstance(points, int) or not 1 <= points <= 100_000):
-        raise err("points", f"must be an integer in [1, 100000] for a latin_hypercube, got {points!r}")
+    if not isinstance(seed, int) or isinstance(seed, bool) or not 0 <= seed <= SEED_MAX:
+        raise err("seed", f"must be an integer in [0, {SEED_MAX:,}], got {seed!r}")
+    if design == "latin_hypercube" and (not isinstance(points, int) or isinstance(points, bool)
+                                        or not 1 <= points <= POINTS_MAX):
+        raise err("points", f"must be an integer in [1, {POINTS_MAX:,}] for a latin_hypercube, got {points!r}")
     protocol, placement = GraspProtocol(), {}
     for key, value in data.get("fixed", {}).items():
         if model == "gripper" and is_trial_key(key):
@@ -462,6 +467,13 @@ def load_study(path: str | Path) -> Study:
     study = Study(name=str(st.get("name", path.stem)), base=base, design=design, vary=vary, responses=responses,
                   objective=objective, points=points, seed=seed, source=str(path),
                   limits=tuple((b, k, v) for (b, k), v in limits.items()), protocol=protocol, placement=placement)
+    n_points = _count_points(design, vary, points)
+    if n_points > POINTS_MAX:
+        raise err("vary", f"{n_points:,} design points; at most {POINTS_MAX:,} (vary fewer parameters or values)")
+    trials = n_points * _trials_per_point(responses)
+    if trials > TRIALS_MAX:
+        raise err("responses", f"{n_points:,} design points × {trials // n_points:,} trials = {trials:,} trials; at "
+                  f"most {TRIALS_MAX:,} (a day of trials on one core)")
     for pt in study.design_points():  # every point must build before any work starts
         try:
             p, _ = apply_point(base, pt)
@@ -480,6 +492,30 @@ def load_study(path: str | Path) -> Study:
         raise err(f"objective.{objective[0]}",
                   f"unknown metric {objective[1]!r}; available: {', '.join(metric_names(responses))}")
     return study
+
+
+def _count_points(design: str, vary: dict, points: int) -> int:
+    """The design points a study has (point 0, the base, included), counted without listing them."""
+    if design == "one_at_a_time":
+        return 1 + sum(len(v) for v in vary.values())
+    if design == "factorial":
+        return 1 + math.prod(len(v) for v in vary.values())
+    return 1 + points
+
+
+def _trials_per_point(responses: dict) -> int:
+    """Grasp trials one design point runs (the default trial count where a response leaves it out)."""
+    from gripper.bench.defaults import DEFAULT_TRIALS
+
+    n = 0
+    for name in ("grasp", "holding_force"):
+        if name in responses:
+            opts = responses[name]
+            n += len(opts.get("objects", ["block"])) * opts.get("trials", DEFAULT_TRIALS)
+    if "envelope" in responses:
+        opts = responses["envelope"]
+        n += len(opts.get("shapes", SHAPES)) * len(opts.get("sizes", [0] * 8)) * opts.get("trials", 3)
+    return max(n, 1)
 
 
 def _mesh_points(value, responses: dict) -> tuple[int, int, int]:

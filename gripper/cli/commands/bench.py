@@ -43,9 +43,10 @@ def run(args) -> int:
 
     check_output_dir(args.out, files=RUN_FILES)
     check_runner(args)
-    proto, noise = protocol_and_noise(args)
+    params = design(args)
+    proto, noise = protocol_and_noise(args, params)
     cfg = BenchConfig(objects=object_specs(args.objects), trials=args.trials, seed=args.seed,
-                      params=design(args), protocol=proto, noise=noise).validate()
+                      params=params, protocol=proto, noise=noise).validate()
     if args.plot:
         check_output_file(args.plot, "--plot", (".png",))  # before the run: a bad path must not cost one
     summary = run_benchmark(cfg, args.out, workers=args.workers, scheduler=args.scheduler,

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sys
 
 from gripper.cli.inputs import (
+    given,
     number,
 )
 from gripper.cli.options import (
@@ -61,6 +62,7 @@ def run(args) -> int:
     from gripper.references.finger_mesh import MeshResolution
     from gripper.references.fmbs import FmbsConfig
 
+    _check_applies(args)
     if args.write_surrogate:
         from gripper.calibration.surrogate import StiffnessSurrogate, correction_model
 
@@ -155,3 +157,19 @@ def _run_actuator(args) -> int:
     print("fitted: " + ", ".join(f"{k} {v:.4g}" for k, v in cal["fitted"].items()))
     print(f"fit {m['fit_wall_time_s']:.1f} s wall; wrote {out}/calibration.json, reference.json, report.png")
     return 0
+
+
+# The options that set up the reference run: bench data (--data) replaces that run.
+REFERENCE_OPTIONS = ("reference", "reading", "mesh_scale", "tension_max", "levels", "no_converge")
+
+
+def _check_applies(args) -> None:
+    """Refuse an option the chosen calibration would ignore, naming it."""
+    if args.data:
+        for dest in REFERENCE_OPTIONS:
+            if given(args, dest):
+                raise ValueError(f"--{dest.replace('_', '-')}: sets up the reference run, which --data replaces "
+                                 "(bench data is fitted as measured); leave one of them out")
+    if given(args, "reading") and args.reference != "fmbs":
+        raise ValueError("--reading: how paper 000's spring is read by --reference fmbs; this calibration uses "
+                         f"--reference {args.reference}")

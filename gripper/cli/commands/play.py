@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import sys
-
 from gripper.cli.inputs import (
     PIXELS,
     number,
@@ -36,7 +34,7 @@ def play_policy(run, out, seed, width, height, camera) -> int:
 
     cfg, act = load_policy(run)
     res = record_policy_video(act, cfg.env_kwargs(), out, seed=seed, width=width, height=height, camera=camera,
-                              on_progress=lambda msg: print(msg, file=sys.stderr, flush=True))
+                              on_progress=lambda msg: print(msg, flush=True))  # stdout: stderr is for errors
     print(f"{res['object']}, seed {seed}: {'held' if res['success'] else 'not held'}; wrote {res['video']} "
           f"({res['frames']} frames at {res['fps']:g} fps)")
     return 0

@@ -7,6 +7,7 @@ from gripper.cli.inputs import (
     numbers,
 )
 from gripper.cli.options import (
+    check_applies,
     design,
     object_specs,
     with_params,
@@ -50,6 +51,7 @@ def run(args) -> int:
     policy = args.policy
     base = GraspProtocol(policy=policy)
     params = design(args)
+    check_applies(args, params)
     drive = drive_for(params)
     pneumatic = params.actuation.kind == "pneumatic"  # which set-point option applies
     if pneumatic and args.grip_tension is not None:

@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 from gripper.cli.options import (
+    EXIT_FAILED,
     check_runner,
     with_runner,
 )
@@ -31,8 +35,12 @@ def run(args) -> int:
     check_runner(args)
     records = run_study(study, args.out, workers=args.workers, scheduler=args.scheduler,
                         progress=not args.no_progress)
-    failed = sum(r["status"] != "ok" for r in records)
-    print((open(f"{args.out}/recommendations.md").read()).rstrip())
-    print(f"{len(records)} design points ({failed} failed); wrote {args.out}/results.jsonl, results.csv, "
+    failed = [r for r in records if r["status"] != "ok"]
+    print(Path(args.out, "recommendations.md").read_text().rstrip())
+    print(f"{len(records)} design points ({len(failed)} failed); wrote {args.out}/results.jsonl, results.csv, "
           "plot_*.png, recommendations.md")
+    if records and len(failed) == len(records):
+        print(f"gripper study: error: every design point failed; the first: {failed[0].get('error', '')[:200]}",
+              file=sys.stderr)
+        return EXIT_FAILED
     return 0

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import sys
-
 from gripper.cli.inputs import (
     PIXELS,
     TRIALS_MAX,
@@ -50,12 +48,13 @@ def run(args) -> int:
     check_output_file(args.out, "--out", VIDEO_SUFFIXES)
     if args.still:
         check_output_file(args.still, "--still", (".png",))
-    proto, noise = protocol_and_noise(args)
+    params = design(args)
+    proto, noise = protocol_and_noise(args, params)
     obj = get_object(object_specs(args.object, "--object")[0])
-    res = record_trial_video(obj, args.out, seed=args.seed, index=args.index, params=design(args),
+    res = record_trial_video(obj, args.out, seed=args.seed, index=args.index, params=params,
                              protocol=proto, noise=noise, width=args.width, height=args.height, fps=args.fps,
                              camera=args.camera, overlay=not args.no_overlay, still=args.still,
-                             on_progress=lambda msg: print(msg, file=sys.stderr, flush=True))
+                             on_progress=lambda msg: print(msg, flush=True))  # stdout: stderr is for errors
     outcome = "error" if res["status"] == "error" else ("success" if res["success"] else
                                                         f"failed ({res['failed_phase']})")
     print(f"{res['trial_id']}: {outcome}; wrote {res['video']} ({res['frames']} frames, "
