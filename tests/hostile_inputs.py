@@ -385,7 +385,8 @@ def first_of_each_kind() -> list[Case]:
 
 
 def main() -> int:
-    """Run every case (two at a time) and print each defect and the totals by kind and class."""
+    """Run every case (two at a time) and print each defect (``-v``: each case) and the totals by
+    kind and class."""
     from concurrent.futures import ThreadPoolExecutor
 
     with ThreadPoolExecutor(2) as pool:
@@ -396,6 +397,8 @@ def main() -> int:
         totals[case.kind][cls] += 1
         if cls != "refused":
             print(f"DEFECT {cls:9s} {case.kind}: {case.name}: {text}")
+        elif "-v" in sys.argv:
+            print(f"refused   {case.kind}: {case.name}: {text}")
     print(json.dumps(totals, indent=1))
     return 0 if all(r[0] == "refused" for r in results) else 1
 

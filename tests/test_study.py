@@ -234,3 +234,54 @@ def test_the_envelope_response_finds_a_gripping_range():
     out = envelope_response(GripperParams(), {"shapes": ["cylinder"], "sizes": [0.005, 0.04], "trials": 1}, 0,
                             GraspProtocol())
     assert out == {"envelope_cylinder_smallest_m": 0.04, "envelope_cylinder_largest_m": 0.04}
+
+
+def test_a_text_field_varies_and_its_results_are_written(tmp_path):
+    """A choice field (springs.closure) varies like a number: its points are tabled, plotted at
+    their place in the study's order and named in the recommendations (0.18.0 failed on the plot,
+    after writing the results)."""
+    from gripper.studies.study import recommendations, write_plots, write_table
+    f = tmp_path / "s.toml"
+    f.write_text('[study]\nname = "closure"\n[vary]\n"springs.closure" = ["stiffness", "rigid"]\n'
+                 '[responses]\ntension_for_angle = { angle_deg = 90.0 }\n[objective]\nminimize = "tension_for_angle_N"\n')
+    study = load_study(f)
+    records = [{"point": i, "status": "ok", "calibrated": True, "calibration_note": "", "changes": ch,
+                "metrics": {"tension_for_angle_N": t}, "curves": {}}
+               for i, (ch, t) in enumerate([({}, 3.0), ({"springs.closure": "stiffness"}, 2.0),
+                                            ({"springs.closure": "rigid"}, 4.0)])]
+    write_table(records, study, tmp_path / "results.csv")
+    assert "stiffness" in (tmp_path / "results.csv").read_text()
+    assert [p.name for p in write_plots(records, study, tmp_path)] == ["plot_springs_closure.png"]
+    assert "| springs.closure | stiffness |" in recommendations(records, study)
+
+
+def test_a_study_too_large_to_run_is_refused_at_load(tmp_path):
+    f = tmp_path / "s.toml"
+    heights = ", ".join(f"{0.010 + 4e-5 * k:.5f}" for k in range(50))
+    f.write_text(f'[study]\nname = "big"\n[vary]\n"finger.hole_height" = [{heights}]\n'
+                 '[responses]\ngrasp = { objects = ["block", "cylinder"], trials = 1000 }\n')
+    with pytest.raises(ValueError, match=r"51 design points × 2,000 trials = 102,000 trials; at most 100,000"):
+        load_study(f)
+    f.write_text(f'[study]\nname = "big"\n[vary]\n"finger.hole_height" = [{heights}]\n'
+                 '[responses]\ngrasp = { objects = ["block", "cylinder"], trials = 900 }\n')
+    assert len(load_study(f).design_points()) == 51  # 91,800 trials: allowed
+    f.write_text('[study]\nname = "big"\ndesign = "factorial"\n[vary]\n' + "".join(
+        f'"finger.{k}" = [{a}, {a * 1.01}, {a * 1.02}, {a * 1.03}]\n' for k, a in
+        [("hole_height", 0.012), ("pitch", 0.016), ("width", 0.016), ("height", 0.018), ("cut_angle_deg", 45.0),
+         ("bridge_thickness", 0.0019), ("hole_diameter", 0.006)]) + '[responses]\nbending = { r_max = 0.1 }\n')
+    with pytest.raises(ValueError, match="16,385 design points; at most 10,000"):
+        load_study(f)
+
+
+def test_a_study_whose_every_point_fails_exits_non_zero(tmp_path, monkeypatch, capsys):
+    import gripper.studies.study as study_module
+
+    def fail(*_a, **_k):
+        raise RuntimeError("no response")
+    monkeypatch.setattr(study_module, "measure_responses", fail)
+    f = tmp_path / "s.toml"
+    f.write_text('[study]\nname = "fails"\n[vary]\n"finger.hole_height" = [0.011]\n'
+                 '[responses]\ntension_for_angle = { angle_deg = 90.0 }\n')
+    assert main(["study", str(f), "--out", str(tmp_path / "out"), "--workers", "1", "--no-progress"]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["gripper study: error: every design point failed; the first: RuntimeError: no response"]

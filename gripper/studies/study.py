@@ -93,14 +93,30 @@ def _shown(key: str, v):
     return v[0] if isinstance(v, tuple | list) else v
 
 
-def _numeric(v) -> float | None:
+def _numeric(v, categories: list) -> float | None:
     """A varied value on a plot's axis: a mesh resolution by its point count (None: the objects'
-    own resolutions, which have no one count)."""
+    own resolutions, which have no one count); a text value (a choice such as
+    ``springs.closure``) by its place in ``categories`` (the base's value, then the study's in
+    the order given)."""
     if v is None:
         return None
+    if isinstance(v, str):
+        return float(categories.index(v)) if v in categories else None
     if isinstance(v, tuple | list):
         return float(v[0] * v[1] * v[2])
     return float(v)
+
+
+def _categories(study: Study, key: str) -> list:
+    values = study.vary[key] if isinstance(study.vary[key], list) else []
+    return list(dict.fromkeys([study.value(key), *values]))
+
+
+def _label(study: Study, key: str, r: dict) -> str:
+    """The value of ``key`` at point ``r``, as the recommendations show it."""
+    v = r["changes"].get(key, study.value(key))
+    v = _shown(key, v)
+    return f"{v:g}" if isinstance(v, float) else str(v)
 
 
 def write_table(records: list[dict], study: Study, path: Path) -> None:
@@ -128,7 +144,7 @@ def _series(records: list[dict], study: Study, key: str) -> list[tuple[float, di
             continue
         if study.design == "one_at_a_time" and set(r["changes"]) - {key}:
             continue
-        x = _numeric(r["changes"].get(key, base_value))
+        x = _numeric(r["changes"].get(key, base_value), _categories(study, key))
         if x is not None:
             out.append((x, r))
     return sorted(out, key=lambda vr: vr[0])
@@ -171,13 +187,14 @@ def recommendations(records: list[dict], study: Study) -> str:
         vals = [r["metrics"][metric] for _, r in series]
         reason = (f"{metric} = {pick[1]['metrics'][metric]:.4g} (range {min(vals):.4g} to {max(vals):.4g} over "
                   f"{len(series)} points" + (f"; base {base_val:.4g})" if base_val is not None else ")"))
-        excluded = [v for v, r in given if not admissible(r)]
+        excluded = [_label(study, key, r) for _, r in given if not admissible(r)]
         if excluded:
-            reason += f"; {', '.join(f'{v:g}' for v in excluded)} excluded by the limits"
+            reason += f"; {', '.join(excluded)} excluded by the limits"
         failed = sum(1 for r in records if r["status"] != "ok" and key in r["changes"])
         if failed:
             reason += f"; {failed} point(s) failed"
-        lines.append(f"| {key} | {pick[0]:g} | {reason} | {'yes' if pick[1]['calibrated'] else 'no'} |")
+        calibrated = "yes" if pick[1]["calibrated"] else "no"
+        lines.append(f"| {key} | {_label(study, key, pick[1])} | {reason} | {calibrated} |")
     notes = sorted({r["calibration_note"] for r in records if r["status"] == "ok" and r.get("calibration_note")})
     if notes:
         lines += ["", "Not calibrated: " + " / ".join(notes) + "."]
