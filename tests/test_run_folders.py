@@ -90,3 +90,43 @@ def test_a_folder_of_mixed_runs_is_refused_and_left_as_it_was(tmp_path):
         assert trials.read_text() == text, name  # no record lost, none added
         assert (tmp_path / "s0" / "summary.json").read_text() == summary, name  # no summary of a mixed file
         assert (tmp_path / "s0" / "config.json").exists() == (config_action is None), name  # none written
+
+
+def test_a_folder_without_its_config_resumes_its_own_run_and_the_summary_counts_it_once(tmp_path):
+    """config.json removed: the same configuration resumes (the records are its own, each
+    once) and its summary counts exactly this run's trials; summarize() itself refuses a record of
+    another configuration, so no summary can count one."""
+    import pytest
+
+    from gripper.bench.benchmark import BenchConfig, summarize
+    assert _bench(tmp_path, "s0", 0, trials=2).returncode == 0
+    assert _bench(tmp_path, "s1", 1, trials=1).returncode == 0
+    (tmp_path / "s0" / "config.json").unlink()
+    again = _bench(tmp_path, "s0", 0, trials=3)  # one more trial of the same configuration
+    assert again.returncode == 0, again.stderr
+    records = [json.loads(x) for x in (tmp_path / "s0" / "trials.jsonl").read_text().splitlines()]
+    assert [r["index"] for r in records] == [0, 1, 2] and {r["seed"] for r in records} == {0}
+    summary = json.loads((tmp_path / "s0" / "summary.json").read_text())
+    assert summary["objects"]["block"]["trials"] == 3
+    cfg = BenchConfig(objects=("block",), trials=3, seed=0).validate()
+    assert {r["run_config_hash"] for r in records} == {cfg.hash()}
+    foreign = json.loads((tmp_path / "s1" / "trials.jsonl").read_text().splitlines()[0])
+    with pytest.raises(ValueError, match=r"record 4 \(block-1-0000\) belongs to another run"):
+        summarize([*records, foreign], cfg)
+
+
+def test_a_study_folder_with_a_foreign_record_is_refused(tmp_path):
+    study = tmp_path / "s.toml"
+    study.write_text('[study]\nname = "t"\n[vary]\n"finger.hole_height" = [0.011]\n'
+                     '[responses]\ntension_for_angle = { angle_deg = 60.0 }\n')
+    run = ["study", "s.toml", "--out", "st", "--workers", "1", "--no-progress"]
+    assert _cli(*run, cwd=tmp_path).returncode == 0
+    results = tmp_path / "st" / "results.jsonl"
+    own = results.read_text()
+    for text, message in ((own + own.splitlines(True)[0], "record 3 repeats point 0"),
+                          (own.replace('"run_config_hash": "', '"run_config_hash": "0'), "belongs to another run")):
+        results.write_text(text)
+        done = _cli(*run, cwd=tmp_path)
+        lines = done.stderr.strip().splitlines()
+        assert done.returncode == 2 and len(lines) == 1 and message in lines[0], lines
+        assert results.read_text() == text

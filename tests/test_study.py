@@ -243,7 +243,8 @@ def test_a_text_field_varies_and_its_results_are_written(tmp_path):
     from gripper.studies.study import recommendations, write_plots, write_table
     f = tmp_path / "s.toml"
     f.write_text('[study]\nname = "closure"\n[vary]\n"springs.closure" = ["stiffness", "rigid"]\n'
-                 '[responses]\ntension_for_angle = { angle_deg = 90.0 }\n[objective]\nminimize = "tension_for_angle_N"\n')
+                 '[responses]\ntension_for_angle = { angle_deg = 90.0 }\n'
+                 '[objective]\nminimize = "tension_for_angle_N"\n')
     study = load_study(f)
     records = [{"point": i, "status": "ok", "calibrated": True, "calibration_note": "", "changes": ch,
                 "metrics": {"tension_for_angle_N": t}, "curves": {}}

@@ -15,6 +15,7 @@ from gripper.cli.inputs import (
 )
 from gripper.cli.options import (
     EXIT_UNSTABLE,
+    GRIP_PRESSURE_RANGE,
     check_runner,
     with_runner,
 )
@@ -45,7 +46,7 @@ def add(sub) -> None:
     field_option(ev, "--grip-tension", GraspProtocol, "grip_tension", "set-point [N]; default: the file's, "
                  "else the protocol's", metavar="N", default=None)
     field_option(ev, "--grip-pressure", GraspProtocol, "grip_pressure", "the pneumatic gripper's set-point [Pa]; "
-                 "default: the file's, else the protocol's", metavar="PA", default=None)
+                 "default: the file's, else the protocol's", metavar="PA", default=None, range_help=GRIP_PRESSURE_RANGE)
     ev.add_argument("--actuation", choices=ACTUATIONS, default="cable",
                     help="the fingers: cable (default) or pneumatic (docs/pneumatic_gripper.md)")
     with_runner(ev)

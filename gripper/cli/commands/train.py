@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-
 from gripper.cli.commands.play import play_policy
 from gripper.cli.inputs import (
     TRIALS_MAX,
@@ -16,6 +14,7 @@ from gripper.cli.options import (
     object_specs,
 )
 from gripper.core.atomic import check_output_dir, check_output_file
+from gripper.core.user_files import parse_user_data
 
 
 def add(sub) -> None:
@@ -101,7 +100,9 @@ def _hyperparam_overrides(items: list[str], flag: str = "--set") -> dict:
         if not sep or not key:
             raise ValueError(f"{flag}: expected KEY=VALUE, got {item!r}")
         try:
-            out[key.strip()] = json.loads(value)
-        except json.JSONDecodeError:
+            out[key.strip()] = parse_user_data(value, "json", f"{flag} {key.strip()}")
+        except ValueError as e:
+            if "not valid JSON" not in str(e):  # too deep, a number that is not a float
+                raise
             out[key.strip()] = value.strip()
     return out
