@@ -151,7 +151,7 @@ _ZIP = ("[object]\nname='x'\nkind='zipper_bag'\nsize=[0.024,0.0113,0.008]\nmass=
     ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\n[damage]\ncriterion='contact_force'\n",
      "damage.limit: missing"),
     ("[object]\nname='x'\nkind='mesh'\nmesh='nowhere.stl'\nfriction=1\n[damage]\ncriterion='none'\n",
-     "object.mesh: mesh: file not found"),
+     "object.mesh: mesh .*nowhere.stl: cannot read it"),
     ("[object\n", "not valid TOML"),
     ("[object]\nname='x'\nkind='rigid_box'\nsize=[0.02,0.02,0.03]\nmass=0.1\nfriction=1\nmesh_points=[4,4,5]\n"
      "[damage]\ncriterion='none'\n", "object.mesh_points: a rigid_box is rigid: it takes no mesh resolution"),

@@ -115,7 +115,8 @@ def check_scheduler(address: str | None, timeout: float = SCHEDULER_TIMEOUT_S) -
 
 
 # The marker file of each command's run folder: a folder holds one command's runs only.
-RUN_MARKERS = {"config.json": "a benchmark", "envelope.json": "an envelope", "study.json": "a study"}
+RUN_MARKERS = {"config.json": "a benchmark", "envelope.json": "an envelope", "study.json": "a study",
+               "progress.csv": "a policy training"}  # (gripper train's folder has a config.json too)
 LOCK_FILE = ".lock"
 
 
@@ -139,10 +140,13 @@ def open_run(out: str | Path, workers: int, scheduler: str | None, filename: str
 
     check_output_dir(out, files=(filename, LOCK_FILE, *files))
     other = [m for m in RUN_MARKERS if m != filename and (out / m).is_file()]
+    other.sort(key=lambda m: m != "progress.csv")  # a training folder's config.json is not a benchmark's
     if other:
         raise ValueError(f"--out: {out} holds {RUN_MARKERS[other[0]]}'s run ({other[0]}); choose another --out "
                          "folder")
-    if check_records is not None and out.is_dir():  # read-only, so that a refusal touches nothing
+    if (out / filename).is_file():  # read-only, so that a refusal touches nothing
+        _check_claim(out / filename, key, h, what)
+    if check_records is not None and out.is_dir():
         check_records(False)
     made = not out.exists()
     out.mkdir(parents=True, exist_ok=True)
@@ -197,16 +201,24 @@ def claim_run_dir(out: Path, filename: str, key: str, h: str, payload: dict, wha
     out.mkdir(parents=True, exist_ok=True)
     cfile = out / filename
     if cfile.exists():
-        try:
-            old = json.loads(cfile.read_text())
-        except json.JSONDecodeError:
-            raise ValueError(f"--out: {cfile} is not valid JSON; use a new folder") from None
-        if old.get(f"{key}_hash") != h:
-            raise ValueError(f"--out: {out} holds {what} (hash {old.get(f'{key}_hash')} vs {h}); choose a new "
-                             "--out folder, or delete that folder to start over")
+        _check_claim(cfile, key, h, what)
         return
     write_text_atomic(cfile, json.dumps({f"{key}_hash": h, key: payload, "versions": versions()},
                                         indent=2, sort_keys=True, default=str))
+
+
+def _check_claim(cfile: Path, key: str, h: str, what: str) -> None:
+    """Refuse a run folder whose identity file ``cfile`` records another run than hash ``h``."""
+    from gripper.core.user_files import read_user_text
+
+    try:
+        old = json.loads(read_user_text(cfile, "--out:"))
+    except (json.JSONDecodeError, RecursionError):
+        raise ValueError(f"--out: {cfile} is not valid JSON; use a new folder") from None
+    got = old.get(f"{key}_hash") if isinstance(old, dict) else None
+    if got != h:
+        raise ValueError(f"--out: {cfile.parent} holds {what} (hash {got} vs {h}); choose a new --out folder, or "
+                         "delete that folder to start over")
 
 
 def executor(workers: int, scheduler: str | None):

@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 
 from gripper.core.atomic import write_atomic
+from gripper.core.user_files import read_user_data
 from gripper.rl.config import EVAL_SEED, TrainConfig
 from gripper.rl.hyperparams import hyperparams_for
 
@@ -161,7 +162,7 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
     if resume:
         if not cfg_path.exists():
             raise ValueError(f"--resume: {out} holds no run to resume (no {CONFIG_FILE})")
-        old = TrainConfig.from_json(json.loads(cfg_path.read_text())["config"])
+        old = TrainConfig.from_json(_run_config(cfg_path))
         diff = [d for d in old.differences(cfg) if d != "steps"]
         if diff:
             raise ValueError(f"--resume: the run in {out} was made with other {', '.join(diff)}")
@@ -277,6 +278,14 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
     return rows
 
 
+def _run_config(path: Path) -> dict:
+    """The ``config`` table of a run folder's config file, read within the user-file limits."""
+    data = read_user_data(path, "run config", (".json",))
+    if not isinstance(data, dict) or not isinstance(data.get("config"), dict):
+        raise ValueError(f"run config {path}: no 'config' table; not a folder 'gripper train' wrote")
+    return data["config"]
+
+
 def load_policy(run: str | Path) -> tuple[TrainConfig, Callable[[np.ndarray], np.ndarray]]:
     """A run folder's config and its final policy as a deterministic ``act(obs batch)``."""
     from stable_baselines3 import PPO, SAC
@@ -284,7 +293,7 @@ def load_policy(run: str | Path) -> tuple[TrainConfig, Callable[[np.ndarray], np
     run = Path(run)
     if not (run / CONFIG_FILE).exists() or not (run / POLICY_FILE).exists():
         raise ValueError(f"--run: {run} holds no trained policy ({CONFIG_FILE} and {POLICY_FILE})")
-    cfg = TrainConfig.from_json(json.loads((run / CONFIG_FILE).read_text())["config"])
+    cfg = TrainConfig.from_json(_run_config(run / CONFIG_FILE))
     model = (PPO if cfg.algo == "ppo" else SAC).load(str(run / POLICY_FILE), device="cpu")
     norm = None
     if (run / NORM_FILE).exists():
