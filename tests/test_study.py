@@ -79,6 +79,9 @@ def test_sigkill_then_resume(study_file, reference, tmp_path):
     (("[0.010, 0.011, 0.013, 0.014]", '["a", "b"]'), "finger.hole_height", 7),
     (('design = "one_at_a_time"', 'design = "random"'), "design", 4),
     (("trials = 1", "trials = 0"), "responses.grasp", 12),
+    (("trials = 1", "trials = 1001"), "responses.grasp", 12),
+    (('grasp = { objects = ["block"], trials = 1 }', 'envelope = { shapes = ["box"], mass = 500.0 }'),
+     "responses.envelope", 12),
 ])
 def test_bad_study_is_refused_before_work(tmp_path, capsys, edit, key, line):
     bad = tmp_path / "bad.toml"

@@ -24,7 +24,7 @@ from gripper.bench.defaults import DEFAULT_WORKERS
 from gripper.core.atomic import write_atomic, write_csv_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
-from gripper.core.ranges import SEED_MAX, TRIALS_MAX
+from gripper.core.ranges import FRICTION, OBJECT_MASS, SEED_MAX, TRIALS_MAX
 from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import read_user_data
 from gripper.drives import drive_for
@@ -56,7 +56,10 @@ class Envelope:
             raise fail("shapes", f"give one or more of {', '.join(SHAPES)}, got {list(self.shapes)!r}")
         if len(set(self.shapes)) != len(self.shapes):
             raise fail("shapes", f"each shape once, got {list(self.shapes)!r}")
-        for key, lo, hi in (("sizes", 1e-3, 0.3), ("masses", 1e-3, 20.0), ("frictions", 0.01, 3.0)):
+        # widths from 1 mm to 0.3 m (beyond any palm); masses and frictions within the objects'
+        # physical ranges (gripper.core.ranges), so that every point's object can be built
+        for key, lo, hi in (("sizes", 1e-3, 0.3), ("masses", 1e-3, OBJECT_MASS.hi),
+                            ("frictions", FRICTION.lo, FRICTION.hi)):
             vals = getattr(self, key)
             if not vals or any(isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v)
                                or not lo <= v <= hi for v in vals):
