@@ -17,6 +17,7 @@ message names the argument (``expect``).
 
 from __future__ import annotations
 
+import atexit
 import json
 import os
 import resource
@@ -252,26 +253,24 @@ KINDS = tuple(dict.fromkeys(c.kind for c in CASES))
 
 def _bench_folder(folder: Path, seed: int) -> None:
     """A finished one-trial bench folder of ``seed`` (made once per campaign, copied per case)."""
-    cache = Path(tempfile.gettempdir()) / f"gripper-campaign-bench-{os.getuid()}-{seed}"
+    cache = _CACHE / f"bench-{seed}"  # this process's: a cache of another version would be another run
     with _MAKING:
         _make_bench_folder(cache, seed)
     shutil.copytree(cache, folder)
 
 
 _MAKING = threading.Lock()
+_CACHE = Path(tempfile.mkdtemp(prefix="gripper-campaign-"))
+atexit.register(shutil.rmtree, _CACHE, ignore_errors=True)
 
 
 def _make_bench_folder(cache: Path, seed: int) -> None:
     if not (cache / "summary.json").is_file():
-        tmp = cache.with_name(cache.name + f".{os.getpid()}")
+        tmp = cache.with_name(cache.name + ".making")
         shutil.rmtree(tmp, ignore_errors=True)
         subprocess.run([*GRIPPER, *BENCH, "--seed", str(seed), "--out", str(tmp)], check=True, capture_output=True,
                        env=_env(), timeout=TIMEOUT)
-        (tmp / ".lock").unlink()
-        try:
-            tmp.rename(cache)
-        except OSError:  # another campaign process made it first
-            shutil.rmtree(tmp, ignore_errors=True)
+        tmp.rename(cache)
 
 
 def _env() -> dict[str, str]:

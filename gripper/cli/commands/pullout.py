@@ -7,6 +7,7 @@ from gripper.cli.inputs import (
     numbers,
 )
 from gripper.cli.options import (
+    GRIP_PRESSURE_RANGE,
     check_applies,
     design,
     object_specs,
@@ -35,7 +36,7 @@ def add(sub) -> None:
                          f"{GraspProtocol().grip_tension:g})")
     po.add_argument("--grip-pressure", default=None, metavar="PA[,PA...]",
                     help=f"the pneumatic gripper's set-points [Pa], comma-separated (default "
-                         f"{GraspProtocol().grip_pressure:g}; at most its regulator's range)")
+                         f"{GraspProtocol().grip_pressure:g}; each {GRIP_PRESSURE_RANGE})")
     po.add_argument("--plot", metavar="FILE.png", help="also write holding force against set-point")
     number(po, "--rate", float, lo=0, lo_open=True, hi=1000, default=PULL_RATE, help="pull ramp [N/s]")
     number(po, "--max-force", float, lo=0, lo_open=True, hi=1000, default=PULL_MAX, help="largest pull [N]")
