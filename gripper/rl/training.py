@@ -147,9 +147,29 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
     ``cfg``). Without it, ``out`` must not hold a run already.
 
     Raises:
-        ValueError: a bad config, a folder that holds another run (or none to resume), or a
-            config that differs from the one being resumed (the fields named).
+        ValueError: a bad config, a folder that holds another run (or none to resume), a
+            config that differs from the one being resumed (the fields named), or a folder
+            another training is writing (its lock, as every run folder's:
+            :func:`gripper.bench.execution.folder_lock`).
     """
+    from gripper.bench.execution import LOCK_FILE, folder_lock
+
+    out = Path(out)
+    made = not out.exists()
+    out.mkdir(parents=True, exist_ok=True)
+    try:
+        with folder_lock(out):
+            return _train(cfg, out, resume=resume, on_progress=on_progress)
+    finally:
+        if made and not (out / CONFIG_FILE).exists():  # refused before it began: leave nothing
+            (out / LOCK_FILE).unlink(missing_ok=True)
+            try:
+                out.rmdir()
+            except OSError:
+                pass
+
+
+def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[dict], None] | None) -> list[dict]:
     import torch
     from stable_baselines3 import PPO, SAC
     from stable_baselines3.common.vec_env import VecNormalize

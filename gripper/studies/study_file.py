@@ -54,7 +54,7 @@ RESPONSES: dict[str, dict[str, type]] = {
 }
 # upper bounds of response options: the actuator model's pressure range (PneumaticActuator.pressure_max's
 # bound), load steps, and the finest mesh that fits this machine's memory (refinement 8: ~600k unknowns)
-RESPONSE_LIMITS = {"inflation": {"pressure_max": 1e6, "steps": 100, "refinement": 8},
+RESPONSE_LIMITS: dict[str, dict[str, float]] = {"inflation": {"pressure_max": 1e6, "steps": 100, "refinement": 8},
                    # trials per object (per width, for the envelope) and a bending run's length [s]
                    # (ten minutes of simulated time, the command line's MAX_SIMULATED_S)
                    "grasp": {"trials": 1000}, "holding_force": {"trials": 1000}, "envelope": {"trials": 100},
