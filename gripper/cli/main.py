@@ -1,8 +1,10 @@
 """The ``gripper`` command: the parser, built from one module per command
 (:mod:`gripper.cli.commands`), and the one place that turns errors into exit codes.
 
-Errors in input (bad parameter, malformed file) print one line on stderr and exit with code 2;
-an unstable simulation exits with 3, Ctrl-C with 130 (:mod:`gripper.cli.options`).
+Errors in input (bad parameter, malformed file) and output that cannot be written (a full disk,
+stdout on a full device) print one line on stderr and exit with code 2; an unstable simulation
+exits with 3, Ctrl-C with 130 and SIGTERM with 143, each with one line
+(:mod:`gripper.cli.options`; the table is in ``docs/cli.md``).
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ import importlib
 import os
 import signal
 import sys
+import threading
 
 from gripper.cli.commands import COMMANDS
 from gripper.cli.inputs import OneLineParser
@@ -98,7 +101,8 @@ def main(argv: list[str] | None = None) -> int:
         return int(e.code or 0)
     from gripper.sim.stability import SimulationUnstable  # after parsing: --help stays quick
 
-    previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    main_thread = threading.current_thread() is threading.main_thread()  # (signals go to the main thread)
+    previous = signal.signal(signal.SIGTERM, _on_sigterm) if main_thread else None
     stdout, sys.stdout = sys.stdout, _GuardedStdout(sys.stdout)
     try:
         code = args.func(args)
@@ -135,7 +139,8 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_INTERRUPTED
     finally:
         sys.stdout = stdout
-        signal.signal(signal.SIGTERM, previous)
+        if main_thread:
+            signal.signal(signal.SIGTERM, previous)
 
 
 class StdoutError(OSError):
