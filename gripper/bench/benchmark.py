@@ -171,6 +171,7 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
         ValueError: bad configuration, or ``out`` holds a different configuration.
     """
     check_instance("cfg", cfg, BenchConfig, optional=False)
+    check_instance("out", out, (str, Path), optional=False)
     cfg.validate()
     run_hash = cfg.hash()
 

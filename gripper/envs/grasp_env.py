@@ -59,6 +59,8 @@ def make_config(**kwargs: Any) -> EnvConfig:
     if isinstance(objects, str):
         kwargs["objects"] = tuple(o.strip() for o in objects.split(",") if o.strip())
     elif objects is not None:
+        if not isinstance(objects, list | tuple) or not all(isinstance(o, str) for o in objects):
+            raise TypeError(f"objects: expected object names (a list, or 'a,b'), got {objects!r}")
         kwargs["objects"] = tuple(objects)
     params = kwargs.pop("params", None)
     if params is None:

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from gripper.bench.defaults import DEFAULT_WORKERS
+from gripper.core.arguments import check_instance
 from gripper.core.atomic import write_atomic, write_csv_atomic
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
@@ -159,6 +160,8 @@ def run_envelope(env: Envelope, out: str | Path, *, workers: int = DEFAULT_WORKE
     """Run (or resume) the envelope into ``out``; write the table, the maps and the summary."""
     from gripper.bench.execution import check_own_records, open_run, read_jsonl, run_ordered
 
+    check_instance("env", env, Envelope, optional=False)
+    check_instance("out", out, (str, Path), optional=False)
     env.validate()
     h = env.hash()
 

@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from gripper.bench.defaults import DEFAULT_WORKERS
+from gripper.core.arguments import check_instance
 from gripper.core.atomic import write_csv_atomic, write_text_atomic
 from gripper.experiments.actuator_responses import inflation_response
 from gripper.experiments.design_responses import measure_responses
@@ -57,6 +58,8 @@ def run_study(study: Study, out: str | Path, *, workers: int = DEFAULT_WORKERS, 
     """Run (or resume) the study into ``out``; write the table, plots and recommendations."""
     from gripper.bench.execution import check_own_records, open_run, read_jsonl, run_ordered
 
+    check_instance("study", study, Study, optional=False)
+    check_instance("out", out, (str, Path), optional=False)
     run_hash = study.hash()
     points = study.design_points()
 
