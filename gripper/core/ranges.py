@@ -9,7 +9,7 @@ range (:func:`gripper.core.fields.param`'s ``within``) is checked before any run
 Example:
     >>> from gripper.core.ranges import OBJECT_MASS
     >>> OBJECT_MASS.text()
-    '(0.0001, 10] kg'
+    '[0.0001, 10] kg'
     >>> OBJECT_MASS.contains(2000.0)
     False
 """
@@ -54,7 +54,7 @@ class Range:
 
 # --- objects (gripper.objects.grasp_object) ---
 OBJECT_MASS = Range(1e-4, 10.0, "kg", "from a paper clip's fraction to beyond any soft gripper's payload: the lift "
-                    "axis's 60 N holds 6 kg")
+                    "axis's 60 N holds 6 kg", lo_closed=True)
 OBJECT_HALF_EXTENT = Range(5e-4, 0.5, "m", "a part of 1 mm, below which its contact is thinner than the pads' "
                            "margins, to a metre across")
 OBJECT_DENSITY = Range(10.0, 25_000.0, "kg/m³", "expanded polystyrene (about 15) to osmium (22 590), the densest "

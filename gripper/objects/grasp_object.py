@@ -232,10 +232,12 @@ def zipper_bag_layout(obj: GraspObject) -> list[tuple[float, float, float]]:
     if not (isinstance(n, int) and not isinstance(n, bool) and 1 <= n <= 64):
         raise ValueError(f"{where}.count: a zipper_bag holds 1 to 64 items, got {n!r}")
     hs = obj.contents_size
-    if not (len(hs) == 3 and all(isinstance(v, int | float) and math.isfinite(v) and v > 0 for v in hs)):
-        raise ValueError(f"{where}.size: three half-extents > 0 m, got {list(hs)!r}")
-    m = obj.contents_mass
-    if not (isinstance(m, int | float) and math.isfinite(m) and 0 < m and n * m < obj.mass):
+    if len(hs) != 3:
+        raise ValueError(f"{where}.size: three half-extents [m], got {list(hs)!r}")
+    for i, v in enumerate(hs):
+        OBJECT_HALF_EXTENT.check(f"{where}.size[{i}]", v)
+    m = OBJECT_MASS.check(f"{where}.mass", obj.contents_mass)
+    if not n * m < obj.mass:
         raise ValueError(f"{where}.mass: each item > 0 kg and all {n} lighter than the bag's total "
                          f"{obj.mass:g} kg (film included), got {m!r}")
     bx, by, bz = obj.size
