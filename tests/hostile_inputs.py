@@ -1,8 +1,9 @@
 """The hostile-input campaign (issue 46): what a careless user, another tool or an attacker can
 hand the command line and the Python API, by kind, each case as its own process with a time
-limit. ``scripts/bad_input_campaign.py`` runs every case (and the typo grid of
-``tests/test_bad_input_campaign.py``) and prints the totals; ``tests/test_hostile_inputs.py`` runs
-the first case of each kind in the default suite and the rest as slow tests.
+limit. ``scripts/bad_input_campaign.py`` runs every case (``--hostile-only``: these alone; else
+with the typo grid of ``tests/test_bad_input_campaign.py``) and prints the totals;
+``tests/test_hostile_inputs.py`` runs the first case of each kind in the default suite and the
+rest as slow tests.
 
 A case is classed:
 
@@ -18,7 +19,6 @@ message names the argument (``expect``).
 from __future__ import annotations
 
 import atexit
-import json
 import os
 import resource
 import shutil
@@ -82,6 +82,11 @@ def _deformable(kind: str, material: str, size: str = "[0.02, 0.02, 0.02]", limi
     crit = {"balloon": "strain", "paper_box": "dent", "bag": "strain"}[kind]
     return (f'[object]\nname = "soft"\nkind = "{kind}"\nsize = {size}\nmass = 0.01\nfriction = 0.6\n'
             f'close_command = 1.0\n[damage]\ncriterion = "{crit}"\nlimit = {limit}\n[material]\n{material}\n')
+
+
+def _trial(args: str) -> str:
+    """Python code that calls ``run_trial(args)``."""
+    return f"from gripper.experiments.trial import run_trial\nrun_trial({args})"
 
 
 def _study(vary: str, responses: str = 'bending = { r_max = 0.1 }', design: str = "one_at_a_time") -> str:
@@ -216,19 +221,14 @@ CASES: list[Case] = [
     Case("seed_bounds", "a study seed of -1", ("study", "s.toml", "--out", "st", "--no-progress"),
          {"s.toml": _study('"finger.cut_angle_deg" = [40.0]').replace('design =', "seed = -1\ndesign =")},
          expect="seed"),
-    Case("seed_bounds", "run_trial with seed 2^40", api="from gripper.experiments.trial import run_trial\n"
-         "run_trial('block', 2**40, 0)", expect="seed"),
+    Case("seed_bounds", "run_trial with seed 2^40", api=_trial("'block', 2**40, 0"), expect="seed"),
     # --- the Python API: wrong types and values name the argument ---
-    Case("api_arguments", "run_trial with index 1.5", api="from gripper.experiments.trial import run_trial\n"
-         "run_trial('block', 0, 1.5)", expect="index"),
-    Case("api_arguments", "run_trial with a negative index", api="from gripper.experiments.trial import run_trial\n"
-         "run_trial('block', 0, -1)", expect="index"),
-    Case("api_arguments", "run_trial with a negative seed", api="from gripper.experiments.trial import run_trial\n"
-         "run_trial('block', -3, 0)", expect="seed"),
-    Case("api_arguments", "run_trial with params of the wrong type", api="from gripper.experiments.trial import "
-         "run_trial\nrun_trial('block', 0, 0, params={'finger': 1})", expect="params"),
-    Case("api_arguments", "run_trial with an object of the wrong type", api="from gripper.experiments.trial import "
-         "run_trial\nrun_trial(3.5, 0, 0)", expect="obj"),
+    Case("api_arguments", "run_trial with index 1.5", api=_trial("'block', 0, 1.5"), expect="index"),
+    Case("api_arguments", "run_trial with a negative index", api=_trial("'block', 0, -1"), expect="index"),
+    Case("api_arguments", "run_trial with a negative seed", api=_trial("'block', -3, 0"), expect="seed"),
+    Case("api_arguments", "run_trial with params of the wrong type", api=_trial("'block', 0, 0, params={'finger': 1}"),
+         expect="params"),
+    Case("api_arguments", "run_trial with an object of the wrong type", api=_trial("3.5, 0, 0"), expect="obj"),
     Case("api_arguments", "run_benchmark with a config of the wrong type", api="from gripper.bench.benchmark import "
          "run_benchmark\nrun_benchmark({'objects': ['block']}, 'run')", expect="cfg"),
     Case("api_arguments", "GraspEnv with params of the wrong type", api="from gripper.envs.grasp_env import "
@@ -381,26 +381,3 @@ def run_case(case: Case, timeout: float = TIMEOUT) -> tuple[str, str]:
 
 def first_of_each_kind() -> list[Case]:
     return [next(c for c in CASES if c.kind == k) for k in KINDS]
-
-
-def main() -> int:
-    """Run every case (two at a time) and print each defect (``-v``: each case) and the totals by
-    kind and class."""
-    from concurrent.futures import ThreadPoolExecutor
-
-    with ThreadPoolExecutor(2) as pool:
-        results = list(pool.map(run_case, CASES))
-    totals: dict[str, dict[str, int]] = {}
-    for case, (cls, text) in zip(CASES, results, strict=True):
-        totals.setdefault(case.kind, {}).setdefault(cls, 0)
-        totals[case.kind][cls] += 1
-        if cls != "refused":
-            print(f"DEFECT {cls:9s} {case.kind}: {case.name}: {text}")
-        elif "-v" in sys.argv:
-            print(f"refused   {case.kind}: {case.name}: {text}")
-    print(json.dumps(totals, indent=1))
-    return 0 if all(r[0] == "refused" for r in results) else 1
-
-
-if __name__ == "__main__":
-    sys.exit(main())

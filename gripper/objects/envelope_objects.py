@@ -36,4 +36,23 @@ def envelope_object(shape: str, size: float, mass: float, friction: float) -> Gr
                        oversize=True).validate()
 
 
-__all__ = ["ENVELOPE_HEIGHT", "HELD_FRACTION", "SHAPES", "envelope_object", "point_held"]
+def check_envelope_points(shapes, sizes, masses, frictions) -> None:
+    """Build the object of every shape and width, every mass and every friction once, so that a
+    grid whose object leaves the physical ranges (:mod:`gripper.core.ranges`) is refused before
+    any trial runs.
+
+    Raises:
+        ValueError: starting with the list at fault (``sizes: ...``, ``masses: ...``, ...).
+    """
+    w0, m0, mu0 = 0.03, 0.05, 0.6  # a point inside every range: each list is checked on its own
+    builds = [("sizes", s, w, m0, mu0) for s in shapes for w in sizes]
+    builds += [("masses", shapes[0], w0, m, mu0) for m in masses]
+    builds += [("frictions", shapes[0], w0, m0, mu) for mu in frictions]
+    for key, *point in builds:
+        try:
+            envelope_object(*point)
+        except ValueError as e:
+            raise ValueError(f"{key}: {e}") from None
+
+
+__all__ = ["ENVELOPE_HEIGHT", "HELD_FRACTION", "SHAPES", "check_envelope_points", "envelope_object", "point_held"]

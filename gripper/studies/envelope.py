@@ -30,7 +30,13 @@ from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import read_user_data
 from gripper.drives import drive_for
 from gripper.experiments.protocol import GRIP_TENSION, GraspProtocol, TrialNoise
-from gripper.objects.envelope_objects import HELD_FRACTION, SHAPES, envelope_object, point_held
+from gripper.objects.envelope_objects import (
+    HELD_FRACTION,
+    SHAPES,
+    check_envelope_points,
+    envelope_object,
+    point_held,
+)
 
 KEYS = ("shapes", "sizes", "masses", "frictions", "trials", "seed", "grip_tension", "grip_pressure")
 
@@ -57,8 +63,7 @@ class Envelope:
             raise fail("shapes", f"give one or more of {', '.join(SHAPES)}, got {list(self.shapes)!r}")
         if len(set(self.shapes)) != len(self.shapes):
             raise fail("shapes", f"each shape once, got {list(self.shapes)!r}")
-        # widths from 1 mm to 0.3 m (beyond any palm); masses and frictions within the objects'
-        # physical ranges (gripper.core.ranges), so that every point's object can be built
+        # widths from 1 mm to 0.3 m (beyond any palm); every point's object is then built once
         for key, lo, hi in (("sizes", 1e-3, 0.3), ("masses", 1e-3, OBJECT_MASS.hi),
                             ("frictions", FRICTION.lo, FRICTION.hi)):
             vals = getattr(self, key)
@@ -67,6 +72,10 @@ class Envelope:
                 raise fail(key, f"give a list of numbers in [{lo:g}, {hi:g}], got {list(vals)!r}")
             if len(set(vals)) != len(vals):
                 raise fail(key, f"each value once, got {list(vals)!r}")
+        try:
+            check_envelope_points(self.shapes, self.sizes, self.masses, self.frictions)
+        except ValueError as e:
+            raise ValueError(f"envelope.{e}") from None
         if isinstance(self.trials, bool) or not isinstance(self.trials, int) or not 1 <= self.trials <= 1000:
             raise fail("trials", f"must be an integer in [1, 1000], got {self.trials!r}")
         if isinstance(self.seed, bool) or not isinstance(self.seed, int) or not 0 <= self.seed <= SEED_MAX:

@@ -448,14 +448,12 @@ def load_study(path: str | Path) -> Study:
                     except ValueError as e:
                         raise err("responses." + name, str(e)) from None
     if "envelope" in responses:  # its objects, built once each way, so a point cannot fail on one
-        from gripper.objects.envelope_objects import envelope_object
+        from gripper.objects.envelope_objects import check_envelope_points
 
         opts = responses["envelope"]
-        shapes, sizes = opts.get("shapes", list(SHAPES)), opts.get("sizes", [0.03])
         try:
-            for shape in shapes:
-                for size in sizes:
-                    envelope_object(shape, size, opts.get("mass", 0.05), opts.get("friction", 0.6))
+            check_envelope_points(opts.get("shapes", list(SHAPES)), opts.get("sizes", [0.03]),
+                                  [opts.get("mass", 0.05)], [opts.get("friction", 0.6)])
         except ValueError as e:
             raise err("responses.envelope", str(e)) from None
     objective = None
