@@ -12,12 +12,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from gripper.references.actuator_bending import STUDY_REFINEMENT  # the mesh; its convergence: docs/pneumatic.md
 from gripper.references.actuator_fe import inflate
 from gripper.references.actuator_mesh import MeshSize
 from gripper.references.pneumatic_params import PneumaticActuator
 
 INFLATION_STEPS = 10  # pressures recorded between 0 and pressure_max (the paper's 25 kPa apart)
-STUDY_REFINEMENT = 2  # the mesh (MeshSize.at_refinement): its convergence in docs/pneumatic.md
 
 
 def inflation_response(actuator: PneumaticActuator, opts: dict) -> tuple[dict, dict]:

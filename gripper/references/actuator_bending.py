@@ -34,7 +34,7 @@ from gripper.references.actuator_fe import GRAVITY, inflate
 from gripper.references.actuator_mesh import MeshSize
 from gripper.references.pneumatic_params import KPA, PneumaticActuator
 
-STUDY_REFINEMENT = 2  # the studies' mesh (gripper.experiments.actuator_responses uses the same)
+STUDY_REFINEMENT = 1  # the studies' mesh (MeshSize.at_refinement; gripper.experiments.actuator_responses uses it too)
 REFERENCE_PRESSURES = np.arange(0.0, 250.0 + 1e-9, 25.0) * KPA  # Pa, the paper's 25 kPa steps
 
 

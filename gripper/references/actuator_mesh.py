@@ -60,27 +60,30 @@ DUCT_FILLET = 0.001  # points closer than 1e-10 m are one point (the blocks shar
 @dataclass(frozen=True)
 class MeshSize(Validated):
     """The mesh's resolution: cells along each part of the cross-section and the cells' length.
-    Defaults: the mesh the design studies use, refinement 2 of :meth:`at_refinement` (its
+    Defaults: the mesh the design studies use, refinement 1 of :meth:`at_refinement` (its
     convergence: ``docs/pneumatic.md``)."""
 
     SECTION = "mesh"
 
-    duct_cells: int = param(2, "-", ge=1, le=16, integer=True,
-                            source="cells along each half of the duct's quarter arc (4 over 90° by default)")
-    wall_cells: int = param(2, "-", ge=1, le=16, integer=True, source="cells through the main body's wall")
+    duct_cells: int = param(1, "-", ge=1, le=16, integer=True,
+                            source="cells along each half of the duct's quarter arc, and as many round the fillet")
+    wall_cells: int = param(1, "-", ge=1, le=16, integer=True, source="cells through the main body's wall")
     layer_cells: int = param(1, "-", ge=1, le=8, integer=True,
                              source="cells through each thin layer (neutral, fibre, cladding): one quadratic "
                                     "cell carries a quadratic field through 0.1-2.5 mm")
-    axial_length: float = param(0.02, "m", gt=0, le=0.07,
-                                source="largest cell length along the actuator (paper 001 §2.3 Step 6 kept "
-                                       "Abaqus's tetrahedra under 7 mm; these cells are quadratic hexahedra)")
+    axial_length: float = param(0.01, "m", gt=0, le=0.01,
+                                source="largest cell length along the actuator. At most 10 mm: a longer quadratic "
+                                       "cell spans 10-20° of the bend in a layer that cannot stretch, and its error "
+                                       "then dominates and changes sign against the cross-section's (measured: "
+                                       "40/20/13 mm cells gave an observed order of 0.24 at 250 kPa)")
 
     @classmethod
     def at_refinement(cls, ratio: int) -> MeshSize:
-        """The convergence study's family: ``ratio`` cells per duct half-arc and through the wall,
-        cells ``40 mm / ratio`` long, one cell through each thin layer (1: coarse, 2: the
-        studies' mesh, 3: the convergence study's finest)."""
-        return cls(duct_cells=ratio, wall_cells=ratio, layer_cells=1, axial_length=0.04 / ratio).validate()
+        """The convergence study's family: ``ratio`` cells along each half of the duct's arc
+        (and as many round the fillet) and through the wall, cells ``10 mm / ratio`` long, one
+        cell through each thin layer (1: the studies' mesh, 2 and 3 the convergence study's
+        finer ones; the cell size goes as 1/ratio)."""
+        return cls(duct_cells=ratio, wall_cells=ratio, layer_cells=1, axial_length=0.01 / ratio).validate()
 
 
 @dataclass(frozen=True)
@@ -95,6 +98,8 @@ class ActuatorMesh:
     hoop: np.ndarray
     actuator: PneumaticActuator
     size: MeshSize
+    quad_points: np.ndarray
+    quad_cells: np.ndarray
 
     @cached_property
     def centroids(self) -> np.ndarray:
@@ -113,24 +118,11 @@ class ActuatorMesh:
         return in_closure & (z >= geo.cap - tol) & (z <= self.actuator.length - geo.cap + tol)
 
     def quadratic(self) -> tuple[np.ndarray, np.ndarray]:
-        """The mesh as twenty-node hexahedra (VTK order): points (n', 3) with a node at the middle
-        of every edge, the ones on the round faces moved onto their circle, and cells (m, 20)."""
-        edges = self.cells[:, HEX20_EDGES]  # (m, 12, 2)
-        pairs = np.sort(edges.reshape(-1, 2), axis=1)
-        unique, inverse = np.unique(pairs, axis=0, return_inverse=True)
-        mid = self.points[unique].mean(axis=1)
-        g = Geometry(self.actuator)
-        ends = self.points[unique]  # (k, 2, 3)
-        rad = np.hypot(ends[:, :, 0], ends[:, :, 1] - g.y_centre)
-        rings = np.array([g.a, g.r_body, g.r_fibre, g.r_out])
-        on_ring = ((ends[:, :, 1] >= g.y_centre - 1e-12).all(axis=1) & np.isclose(rad[:, 0], rad[:, 1], atol=1e-12)
-                   & (np.abs(rad[:, :1] - rings[None, :]) < 1e-12).any(axis=1))
-        r_mid = np.hypot(mid[:, 0], mid[:, 1] - g.y_centre)
-        scale = np.where(on_ring, rad[:, 0] / np.where(r_mid > 0, r_mid, 1.0), 1.0)
-        mid[:, 0] *= scale
-        mid[:, 1] = g.y_centre + (mid[:, 1] - g.y_centre) * scale
-        cells = np.hstack([self.cells, len(self.points) + inverse.reshape(-1, 12)])
-        return np.vstack([self.points, mid]), cells
+        """The mesh as twenty-node hexahedra (VTK order): points (n', 3), the eight-node mesh's
+        ``points`` first, then the mid-edge nodes (each on its arc where the cell's edge is round:
+        the duct's wall and fillets, the body's, fibre's and cladding's round faces), and cells
+        (m, 20)."""
+        return self.quad_points, self.quad_cells
 
     def tip_line(self) -> tuple[int, int]:
         """The points at the free end's bottom and top on the mid-plane (x = 0): the material line
@@ -192,6 +184,22 @@ class Geometry:
         """Radius of the duct's two rounded edges, where its arc meets its flat side [m]."""
         return min(DUCT_FILLET, 0.5 * self.a)
 
+    @property
+    def fillet_angle(self) -> float:
+        """The direction from the half-rounds' centre [rad, from the flat side] where the fillet
+        meets the duct's arc."""
+        a, f = self.a, self.fillet
+        return math.atan2(f, math.sqrt((a - f) ** 2 - f * f))
+
+    def fillet_directions(self, t: np.ndarray) -> np.ndarray:
+        """Directions from the half-rounds' centre [rad] of the points a fraction ``t`` of the way
+        round the fillet's arc, from where it leaves the flat side (t = 0) to where it meets the
+        duct's arc (t = 1)."""
+        a, f = self.a, self.fillet
+        cx = math.sqrt((a - f) ** 2 - f * f)
+        psi = -0.5 * np.pi + np.asarray(t, dtype=float) * (self.fillet_angle + 0.5 * np.pi)
+        return np.arctan2(f + f * np.sin(psi), cx + f * np.cos(psi))
+
     def duct_radius_at(self, theta: np.ndarray) -> np.ndarray:
         """The duct wall's distance [m] from the half-rounds' centre along the direction θ from
         the flat side (+x): a on the arc, less on the fillet (where the ray leaves the fillet's
@@ -201,7 +209,7 @@ class Geometry:
         theta = np.asarray(theta, dtype=float)
         e_c = np.cos(theta) * cx + np.sin(theta) * cy
         t = e_c + np.sqrt(np.maximum(e_c ** 2 - (cx * cx + cy * cy) + f * f, 0.0))
-        return np.where(theta < math.atan2(cy, cx), t, a)
+        return np.where(theta < self.fillet_angle, t, a)
 
 
 def _graded(lo: float, hi: float, n: int) -> np.ndarray:
@@ -220,51 +228,70 @@ def _levels(breaks: list[tuple[float, int]], start: float) -> np.ndarray:
 
 
 def _grid_quads(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The quads of a structured (ni, nj, 2) point grid: points flattened and cells (k, 4)."""
-    ni, nj = points.shape[:2]
-    idx = np.arange(ni * nj).reshape(ni, nj)
-    cells = np.stack([idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]], axis=-1).reshape(-1, 4)
+    """The quadratic quads of a structured point grid sampled at twice the cells' resolution,
+    (2 ni + 1, 2 nj + 1, 2): the corners are the even-indexed points, the mid-edge nodes the
+    points between them (each on the block's own map: on its arc where the block's edge is
+    round). Returns the points flattened and cells (k, 8): four corners, then the mid-edge nodes
+    of edges 0-1, 1-2, 2-3, 3-0."""
+    mi, mj = points.shape[:2]
+    idx = np.arange(mi * mj).reshape(mi, mj)
+    i, j = np.meshgrid(np.arange(0, mi - 1, 2), np.arange(0, mj - 1, 2), indexing="ij")
+    i, j = i.ravel(), j.ravel()
+    cells = np.stack([idx[i, j], idx[i + 2, j], idx[i + 2, j + 2], idx[i, j + 2],
+                      idx[i + 1, j], idx[i + 2, j + 1], idx[i + 1, j + 2], idx[i, j + 1]], axis=-1)
     return points.reshape(-1, 2), cells
 
 
+def _halves(levels: np.ndarray) -> np.ndarray:
+    """Node positions with the midpoint of every interval put between them (2 n + 1 values)."""
+    out = np.empty(2 * len(levels) - 1)
+    out[0::2] = levels
+    out[1::2] = 0.5 * (levels[:-1] + levels[1:])
+    return out
+
+
 def cross_section(actuator: PneumaticActuator, size: MeshSize) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The half cross-section (x ≥ 0) as quads: points (n, 2), counter-clockwise cells (m, 4)
-    and which cells fill the duct (the O-grid's three blocks)."""
+    """The half cross-section (x ≥ 0) as eight-node quads: points (n, 2), counter-clockwise cells
+    (m, 8) (corners, then mid-edge nodes) and which cells fill the duct (the O-grid's three
+    blocks). Every block is sampled from its own map at twice its resolution, so the mid-edge
+    nodes of the duct's wall (fillets included) and of every ring lie on their arcs."""
     g = Geometry(actuator)
     a, yc, nq = g.a, g.y_centre, size.duct_cells
     n_duct = max(1, nq // 2)  # cells from the O-grid's core to the duct's wall
     s = 0.5 * a  # the core square's side
-    lam = np.linspace(0.0, 1.0, n_duct + 1)[None, :, None]
-    blocks = []
-    u = np.linspace(0.0, 1.0, nq + 1)
-    core = np.stack(np.meshgrid(s * u, s * u, indexing="ij"), axis=-1)
-    blocks.append(core)
-    # wedge below 45°: from the core's right edge (x = s) out to the arc
-    theta = 0.25 * np.pi * u
-    inner = np.stack([np.full_like(u, s), s * u], axis=-1)[:, None, :]
-    outer = (g.duct_radius_at(theta)[:, None] * np.stack([np.cos(theta), np.sin(theta)], axis=-1))[:, None, :]
-    blocks.append(inner + lam * (outer - inner))
-    # wedge above 45°: from the core's top edge (y = s) out to the arc
-    theta = 0.5 * np.pi - 0.25 * np.pi * u
-    inner = np.stack([s * u, np.full_like(u, s)], axis=-1)[:, None, :]
-    outer = (g.duct_radius_at(theta)[:, None] * np.stack([np.cos(theta), np.sin(theta)], axis=-1))[:, None, :]
-    blocks.append(inner + lam * (outer - inner))
-    # the half-ring above y_c: body wall (from the duct's wall out to the body's round face),
-    # fibre layer, cladding
-    theta = np.linspace(0.0, 0.5 * np.pi, 2 * nq + 1)
+    lam = _halves(np.linspace(0.0, 1.0, n_duct + 1))[None, :, None]
+    u = _halves(np.linspace(0.0, 1.0, nq + 1))
+    # below 45° the wall is the fillet, in cells of its own spaced evenly round its centre, then
+    # the arc: no cell's edge bends round the kink in the wall's curvature, and the fillet (which
+    # turns through 90° + its angle within a few degrees seen from the duct's centre) is refined
+    # with the rest
+    theta_wall = np.r_[g.fillet_directions(np.linspace(0.0, 1.0, 2 * nq + 1)),
+                       np.linspace(g.fillet_angle, 0.25 * np.pi, 2 * nq + 1)[1:]]
+    v = _halves(theta_wall[0::2] / (0.25 * np.pi))
+    blocks = [np.stack(np.meshgrid(s * u, s * v, indexing="ij"), axis=-1)]
+    # the two wedges, below and above 45°: from the core's side out to the duct's wall, a
+    # transfinite blend whose outer edge is the wall itself
+    for theta, inner in ((theta_wall, np.stack([np.full_like(v, s), s * v], axis=-1)),
+                         (0.5 * np.pi - 0.25 * np.pi * u, np.stack([s * u, np.full_like(u, s)], axis=-1))):
+        outer = g.duct_radius_at(theta)[:, None] * np.stack([np.cos(theta), np.sin(theta)], axis=-1)
+        blocks.append(inner[:, None, :] + lam * (outer - inner)[:, None, :])
+    # the half-ring above y_c, a polar map: the body's wall from the duct's wall out to the body's
+    # round face (a blend in radius), then the fibre layer and the cladding (circles)
+    theta = np.r_[theta_wall, 0.5 * np.pi - 0.25 * np.pi * u[::-1][1:]]
     r_duct = g.duct_radius_at(theta)[:, None]
-    wall = np.linspace(0.0, 1.0, size.wall_cells + 1)[None, :]
-    outer_radii = _levels([(g.r_fibre, size.layer_cells), (g.r_out, size.layer_cells)], g.r_body)[1:]
+    wall = _halves(np.linspace(0.0, 1.0, size.wall_cells + 1))[None, :]
+    outer_radii = _halves(_levels([(g.r_fibre, size.layer_cells), (g.r_out, size.layer_cells)], g.r_body))[1:]
     radii = np.hstack([r_duct + wall * (g.r_body - r_duct),
                        np.broadcast_to(outer_radii, (len(theta), len(outer_radii)))])
-    ring = np.stack([radii * np.cos(theta)[:, None], radii * np.sin(theta)[:, None]], axis=-1)
-    blocks.append(ring)
-    # below y_c: a tensor grid whose x nodes continue the duct's flat side and the ring's radii
-    x_flat = float(r_duct[0, 0])  # where the flat side meets the fillet
-    xs = np.concatenate([s * u, np.linspace(s, x_flat, n_duct + 1)[1:], radii[0, 1:]])
+    blocks.append(np.stack([radii * np.cos(theta)[:, None], radii * np.sin(theta)[:, None]], axis=-1))
+    # below y_c: a tensor grid whose x nodes continue the core's, the wedge's flat side and the
+    # ring's radii (straight cells: their mid-edge nodes at the middle)
+    x_flat = float(g.duct_radius_at(np.zeros(1))[0])  # where the flat side meets the fillet
+    xs = np.concatenate([s * np.linspace(0.0, 1.0, nq + 1), np.linspace(s, x_flat, n_duct + 1)[1:],
+                         radii[0, 2::2]])
     ys = _levels([(g.y_fibre_bottom, size.layer_cells), (g.y_neutral_bottom, size.layer_cells),
                   (g.y_neutral_top, size.layer_cells), (yc, size.wall_cells)], g.y_bottom) - yc
-    blocks.append(np.stack(np.meshgrid(xs, ys, indexing="ij"), axis=-1))
+    blocks.append(np.stack(np.meshgrid(_halves(xs), _halves(ys), indexing="ij"), axis=-1))
     pts, block_cells, duct, offset = [], [], [], 0
     for k, b in enumerate(blocks):
         p, c = _grid_quads(b)
@@ -275,11 +302,16 @@ def cross_section(actuator: PneumaticActuator, size: MeshSize) -> tuple[np.ndarr
     points = np.concatenate(pts) + np.array([0.0, yc])
     keys = np.round(points, MERGE_DECIMALS)
     _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-    points, cells = points[first], inverse.reshape(-1)[np.concatenate(block_cells)]
-    # orient every quad counter-clockwise (its signed area positive)
-    p = points[cells]
+    cells = inverse.reshape(-1)[np.concatenate(block_cells)]
+    used = np.unique(cells)  # the blocks' face centres (odd, odd) belong to no cell
+    renumber = np.full(len(first), -1)
+    renumber[used] = np.arange(len(used))
+    points, cells = points[first][used], renumber[cells]
+    # orient every quad counter-clockwise (its corners' signed area positive)
+    p = points[cells[:, :4]]
     area = 0.5 * np.sum(p[:, :, 0] * np.roll(p[:, :, 1], -1, 1) - np.roll(p[:, :, 0], -1, 1) * p[:, :, 1], axis=1)
-    cells[area < 0] = cells[area < 0][:, ::-1]
+    flip = area < 0
+    cells[flip] = cells[flip][:, [0, 3, 2, 1, 7, 6, 5, 4]]
     return points, cells, np.concatenate(duct)
 
 
@@ -309,21 +341,27 @@ def actuator_mesh(actuator: PneumaticActuator, size: MeshSize) -> ActuatorMesh:
     actuator, size = actuator.validate(), size.validate()
     g = Geometry(actuator)
     pts2, quads, duct_quads = cross_section(actuator, size)
-    zs = axial_levels(actuator, size)
+    zs = _halves(axial_levels(actuator, size))  # the cells' ends and their mid-edge nodes' levels
     n2, nz = len(pts2), len(zs)
     points = np.column_stack([np.tile(pts2, (nz, 1)), np.repeat(zs, n2)])
-    layer = np.arange(nz - 1)[:, None, None] * n2
-    cells = np.concatenate([quads[None] + layer, quads[None] + layer + n2], axis=2).reshape(-1, 8)
-    centre = points[cells].mean(axis=1)
+    lo = np.arange(0, nz - 1, 2)[:, None, None] * n2  # each cell's lower level
+    corners, mids = quads[None, :, :4], quads[None, :, 4:]
+    cells = np.concatenate([corners + lo, corners + lo + 2 * n2, mids + lo, mids + lo + 2 * n2, corners + lo + n2],
+                           axis=2).reshape(-1, 20)
+    centre = points[cells[:, :8]].mean(axis=1)
     x, y, z = centre.T
     tol = 1e-12
-    in_duct = np.tile(duct_quads, nz - 1) & (z > g.cap) & (z < actuator.length - g.cap)
+    in_duct = np.tile(duct_quads, (nz - 1) // 2) & (z > g.cap) & (z < actuator.length - g.cap)
     keep = ~in_duct
     cells, x, y, z = cells[keep], x[keep], y[keep], z[keep]
-    used = np.unique(cells)
+    # the corner nodes first (the eight-node mesh's points), then the mid-edge nodes
+    corner_nodes = np.unique(cells[:, :8])
+    mid_nodes = np.setdiff1d(np.unique(cells[:, 8:]), corner_nodes)
+    order = np.concatenate([corner_nodes, mid_nodes])
     renumber = np.full(len(points), -1)
-    renumber[used] = np.arange(len(used))
-    points, cells = points[used], renumber[cells]
+    renumber[order] = np.arange(len(order))
+    quad_points, quad_cells = points[order], renumber[cells]
+    points, cells = quad_points[:len(corner_nodes)], quad_cells[:, :8]
     above = y > g.y_centre
     r = np.hypot(x, y - g.y_centre)
     fibre = np.where(above, (r > g.r_body) & (r < g.r_fibre),
@@ -345,4 +383,5 @@ def actuator_mesh(actuator: PneumaticActuator, size: MeshSize) -> ActuatorMesh:
     dx, dy = x[corner] - g.r_body, y[corner] - g.y_neutral_bottom
     norm = np.hypot(dx, dy) + tol
     hoop[corner, 0], hoop[corner, 1] = -dy / norm, dx / norm
-    return ActuatorMesh(points=points, cells=cells, material=material, hoop=hoop, actuator=actuator, size=size)
+    return ActuatorMesh(points=points, cells=cells, material=material, hoop=hoop, actuator=actuator, size=size,
+                        quad_points=quad_points, quad_cells=quad_cells)
