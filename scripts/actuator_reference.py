@@ -125,8 +125,11 @@ def convergence(data: dict) -> dict:
 
 def extrapolate(data: dict) -> dict:
     """Richardson extrapolation of the bending (less its value at 0 kPa, gravity's) at each
-    pressure of the three meshes' sweeps; the grid convergence index of the finest and of the
-    studies' mesh (the middle one)."""
+    pressure of the three meshes' sweeps, and the grid convergence index of each mesh,
+    GCI = 1.25 |f - f_extrapolated| / |f| (Celik et al. 2008's safety factor for three meshes;
+    for the finest mesh it is their GCI_fine); the studies' mesh is the coarsest."""
+    from gripper.references.convergence import GCI_SAFETY_FACTOR
+
     sweeps = data["sweeps"]
     ratios = sorted(int(k) for k in sweeps)
     h = tuple(1.0 / ratio for ratio in ratios)
@@ -136,10 +139,11 @@ def extrapolate(data: dict) -> dict:
             continue
         f = tuple(sweeps[str(r)]["angle_deg"][i] - sweeps[str(r)]["angle_deg"][0] for r in ratios)
         rich = richardson(h, f)
-        gci_medium = rich.asymptotic_ratio * (h[1] / h[2]) ** rich.order * rich.gci_fine
+        gci = [GCI_SAFETY_FACTOR * abs(fi - rich.extrapolated) / abs(fi) for fi in f]
         rows.append({"pressure_kPa": p, "angles_deg": list(f), "order": rich.order,
-                     "extrapolated_deg": rich.extrapolated, "gci_fine": rich.gci_fine,
-                     "gci_studies_mesh": gci_medium, "asymptotic_ratio": rich.asymptotic_ratio})
+                     "extrapolated_deg": rich.extrapolated, "gci_fine": rich.gci_fine, "gci_by_mesh": gci,
+                     "gci_studies_mesh": gci[ratios.index(STUDY_REFINEMENT)],
+                     "asymptotic_ratio": rich.asymptotic_ratio})
     data["richardson"] = {"refinements": ratios, "studies_refinement": STUDY_REFINEMENT, "by_pressure": rows}
     save(data)
     return data
@@ -164,6 +168,62 @@ def studies(data: dict, folders: list[Path]) -> dict:
     return data
 
 
+def _polygon_area_moment(xy: np.ndarray) -> tuple[float, float]:
+    """Area and first moment about y = 0 (∫ y dA) of a closed polygon [m², m³]."""
+    x, y = xy.T
+    x1, y1 = np.roll(x, -1), np.roll(y, -1)
+    cross = x * y1 - x1 * y
+    return float(0.5 * cross.sum()), float((cross * (y + y1)).sum() / 6.0)
+
+
+def duct_section(mesh, deformed: np.ndarray, z0: float) -> dict:
+    """The duct's half cross-section at the station ``z0`` [m] in the deformed shape, in the
+    section's own frame: the section's nodes moved back by the rigid motion that best fits its
+    neutral-layer nodes (which do not stretch; Kabsch), so what is left is the section's change
+    of shape. Returns its area, first moment about the neutral layer's mid-plane (the pressure's
+    lever, :mod:`gripper.references.bending_moment_model`) and height [m², m³, m]."""
+    from gripper.references.actuator_mesh import Geometry
+
+    g = Geometry(mesh.actuator)
+    ref = mesh.quad_points
+    at = np.flatnonzero(np.isclose(ref[:, 2], z0, rtol=0, atol=1e-9))
+    neutral = at[np.abs(ref[at, 1]) <= 0.5 * mesh.actuator.neutral_thickness + 1e-12]
+    a, b = ref[neutral], deformed[neutral]
+    ca, cb = a.mean(axis=0), b.mean(axis=0)
+    u, _, vt = np.linalg.svd((b - cb).T @ (a - ca))
+    rot = u @ np.diag([1.0, 1.0, np.sign(np.linalg.det(u @ vt))]) @ vt  # maps reference to deformed
+    local = (deformed[at] - cb) @ rot + ca
+    on_duct = mesh.duct_surface_points(ref[at])
+    x, y = ref[at, 0], ref[at, 1]
+    wall = on_duct & (y > g.y_centre + 1e-12)
+    flat = on_duct & np.isclose(y, g.y_centre, atol=1e-12)
+    # the half duct's outline: along the flat side from the mid-plane, round the wall, down the mid-plane
+    theta = np.arctan2(y - g.y_centre, x)
+    order = np.r_[np.flatnonzero(flat)[np.argsort(x[flat])], np.flatnonzero(wall)[np.argsort(theta[wall])]]
+    outline = local[order][:, :2]
+    outline = np.vstack([outline, [0.0, outline[-1, 1]], [0.0, outline[0, 1]]]) if outline[-1, 0] > 1e-12 else outline
+    area, moment = _polygon_area_moment(outline)
+    return {"area": area, "first_moment": moment, "height": float(outline[:, 1].max() - outline[:, 1].min())}
+
+
+def section_check(data: dict) -> dict:
+    """How the duct's cross-section changes under pressure at mid-length (the semi-analytical
+    model's assumption that it keeps its shape), on the studies' mesh."""
+    r = inflate(PneumaticActuator(), PRESSURES, MeshSize.at_refinement(STUDY_REFINEMENT), keep_shapes=True)
+    z_levels = np.unique(np.round(r.mesh.points[:, 2], 12))  # the cells' ends, where every section node is
+    z0 = float(z_levels[np.argmin(np.abs(z_levels - 0.5 * r.mesh.actuator.length))])
+    rows = [duct_section(r.mesh, s, z0) for s in r.shapes]
+    data["section"] = {"z_m": z0, "pressure_kPa": (r.pressures / 1e3).tolist(),
+                       "area_ratio": [row["area"] / rows[0]["area"] for row in rows],
+                       "first_moment_ratio": [row["first_moment"] / rows[0]["first_moment"] for row in rows],
+                       "height_ratio": [row["height"] / rows[0]["height"] for row in rows]}
+    save(data)
+    for p, row in zip(r.pressures, rows, strict=True):
+        print(f"{p / 1e3:5.0f} kPa: duct area x{row['area'] / rows[0]['area']:.3f}, "
+              f"first moment x{row['first_moment'] / rows[0]['first_moment']:.3f}")
+    return data
+
+
 def pictures(video: Path | None) -> None:
     from gripper.render.actuator_views import inflation_pictures, inflation_video
 
@@ -183,6 +243,7 @@ def main() -> None:
     sub = ap.add_subparsers(dest="what", required=True)
     sub.add_parser("convergence")
     sub.add_parser("extrapolate", help="redo the extrapolation from the saved sweeps")
+    sub.add_parser("section", help="the duct's cross-section under pressure at mid-length (studies' mesh)")
     st = sub.add_parser("studies")
     st.add_argument("folders", nargs="+", type=Path)
     pi = sub.add_parser("pictures")
@@ -193,6 +254,8 @@ def main() -> None:
         convergence(data)
     elif args.what == "extrapolate":
         extrapolate(data)
+    elif args.what == "section":
+        section_check(data)
     elif args.what == "studies":
         studies(data, args.folders)
     else:

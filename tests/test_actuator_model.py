@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from gripper.references.actuator_mesh import FIBRE, HEX20_EDGES, NEUTRAL, Geometry, MeshSize, actuator_mesh
-from gripper.references.fibre_materials import fibre_elasticity, fibre_stress
+from gripper.references.fibre_materials import TENSION_ONLY_BAND, fibre_elasticity, fibre_stress, ramp
 from gripper.references.pneumatic_params import FIG17_SEGMENTS, PneumaticActuator
 
 STEP = 1e-6  # finite-difference step on F; central differences are exact to ~STEP² for these quadratics
@@ -112,6 +112,21 @@ def _check_tangent(stress, elasticity, energy, kw):
             assert np.allclose(A[:, :, i, j], dP, rtol=1e-6, atol=1e-8)
 
 
+def test_tension_only_ramp():
+    """The ramp is nothing when shortened, continuous with its slope across the band, and the
+    bare fibre law (x, slope 1) past it, less the band's δ/2."""
+    d = 1e-3
+    x = np.array([-1e-2, 0.0, 0.5 * d, d, 2e-2])
+    g, slope = ramp(x, d)
+    assert list(g) == pytest.approx([0.0, 0.0, d / 8, d / 2, 2e-2 - d / 2])
+    assert list(slope) == pytest.approx([0.0, 0.0, 0.5, 1.0, 1.0])
+    eps = 1e-9
+    for edge in (0.0, d):  # the slope is continuous at both ends of the band
+        _, s = ramp(np.array([edge - eps, edge + eps]), d)
+        assert abs(s[1] - s[0]) < 1e-5
+    assert list(ramp(x, 0.0)[0]) == [0.0, 0.0, 0.5 * d, d, 2e-2]
+
+
 def test_fibre_energy_stress_and_tangent_are_its_derivatives():
     rng = np.random.default_rng(0)
     dirs = [rng.standard_normal((3, 1, 3)) for _ in range(2)]
@@ -122,14 +137,21 @@ def test_fibre_energy_stress_and_tangent_are_its_derivatives():
         fa = np.einsum("iJ...,J...->i...", F, d)
         return np.einsum("i...,i...->...", fa, fa)
 
-    def energy(F):  # W = k (I4 - 1)² / 8 per stretched family, nothing for a shortened one
-        return sum(k * np.maximum(i4(F, d) - 1.0, 0.0) ** 2 / 8 for d in dirs)
+    band = TENSION_ONLY_BAND
+
+    def ramp_integral(x):  # ∫ g: 0 shortened, x³/6δ within the band, then δ²/6 + (x² - δ²)/2 - δ(x - δ)/2
+        return np.where(x <= 0, 0.0, np.where(x < band, x ** 3 / (6 * band),
+                                              band ** 2 / 6 + (x * x - band * band) / 2 - band * (x - band) / 2))
+
+    def energy(F):  # W = k G(I4 - 1) / 4 per family: k (I4 - 1)² / 8 when stretched past the band
+        return sum(k * ramp_integral(i4(F, d) - 1.0) / 4 for d in dirs)
 
     # the sample holds both stretched and shortened families, none within the step of the switch
+    # or of the band's end
     values = np.stack([i4(np.eye(3)[:, :, None, None] + 0.2 * np.random.default_rng(1).standard_normal((3, 3, 2, 3)),
                           d) for d in dirs])
-    assert (values > 1.01).any() and (values < 0.99).any() and not (np.abs(values - 1) < 1e-3).any()
-
+    assert (values > 1.01).any() and (values < 0.99).any()
+    assert not (np.abs(values - 1) < 1e-3).any() and not (np.abs(values - 1 - band) < 1e-3).any()
     _check_tangent(fibre_stress, fibre_elasticity, energy, {"directions": dirs, "stiffness": k})
 
 

@@ -55,8 +55,11 @@ REST_TOL = 1e-10  # N·m, the static solve's force-balance tolerance per hinge
 
 
 def design_hash(actuator: PneumaticActuator, refinement: int) -> str:
-    """Hash of what the calibration stands for: the actuator design and the reference mesh."""
-    return stable_hash([asdict(actuator), refinement])
+    """Hash of what the calibration stands for: the actuator design, the reference model's
+    formulation (``REFERENCE_MODEL``) and its mesh."""
+    from gripper.references.actuator_fe import REFERENCE_MODEL
+
+    return stable_hash([asdict(actuator), REFERENCE_MODEL, refinement])
 
 
 def design_block(actuator: PneumaticActuator, record: ActuatorRecord) -> dict[str, float]:

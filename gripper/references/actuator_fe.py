@@ -4,14 +4,17 @@ FElupe, and its bending angle against pressure.
 The model (mesh and materials: :mod:`gripper.references.actuator_mesh`,
 :mod:`gripper.references.fibre_materials`):
 
-- every cell is RTV 230 silicone, FElupe's Yeoh energy in the mixed u/p/J (Hu-Washizu) form with
-  cell-constant pressure and volume ratio, nearly incompressible (bulk modulus ``BULK_RATIO``
-  times the shear modulus); the fibre layer's cells add the two fibre families, the neutral
-  layer's cells the fabric membrane;
+- every cell but the neutral layer's is RTV 230 silicone, FElupe's Yeoh energy in the mixed
+  u/p/J (Hu-Washizu) form with cell-constant pressure and volume ratio, nearly incompressible
+  (bulk modulus ``BULK_RATIO`` times the shear modulus); the fibre layer's cells add the two
+  tension-only fibre families; the neutral layer's cells are the fabric, a compressible solid
+  with every strain component (:func:`fabric_material`), so it bends as a plate; silicone's
+  near-incompressibility there would have stiffened the fabric's ν = 0.2 (the silicone's bulk
+  modulus, 3·10⁴ μ, is of the fabric's modulus' order);
 - half the actuator, with the mid-plane x = 0 a plane of symmetry (u_x = 0 there);
 - the end z = 0 clamped (paper 001 §2.3 Step 3), the other free;
 - gravity along the actuator, +z: it hangs from its clamp, as a gripper's finger does (assumed:
-  the paper says gravity acts, not in which direction; hanging, the actuator bends only 0.7° at
+  the paper says gravity acts, not in which direction; hanging, the actuator bends only 1° at
   0 kPa, through the fabric's eccentric stiffness, so the curves start near 0° as the paper's
   Figs. 12-16 do);
 - a follower pressure on every face of the duct (wall, flat side and both caps), ramped from 0,
@@ -22,13 +25,13 @@ actuator's is, e.g. Polygerinos et al. 2015): the angle through which the free e
 about the x axis, measured by the material line across the tip's face on the mid-plane
 (bottom to top point), unwrapped past 180° over the load steps.
 
-Example (the coarsest mesh; about 5 s):
+Example (the studies' mesh; about 8 s):
     >>> from gripper.references.actuator_fe import inflate
     >>> from gripper.references.actuator_mesh import MeshSize
     >>> from gripper.references.pneumatic_params import PneumaticActuator
     >>> r = inflate(PneumaticActuator(), [25e3], MeshSize.at_refinement(1))  # doctest: +SKIP
     >>> r.angles_deg.round(1)                                                # doctest: +SKIP
-    array([ 0.8, 11.1])
+    array([ 1. , 10.7])
 """
 
 from __future__ import annotations
@@ -41,11 +44,23 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from gripper.references.actuator_mesh import FIBRE, NEUTRAL, ActuatorMesh, MeshSize, actuator_mesh
+from gripper.references.actuator_mesh import (
+    FIBRE,
+    NEUTRAL,
+    ActuatorMesh,
+    Geometry,
+    MeshSize,
+    actuator_mesh,
+    winding_tangent,
+)
 from gripper.references.fibre_materials import fibre_elasticity, fibre_stress
 from gripper.references.pneumatic_params import PneumaticActuator
 
 GRAVITY = 9.81  # m/s², standard gravity
+# the formulation's name, in the pneumatic calibration's design hash: a change of mesh family or
+# material model makes the committed calibration stale (2: the isoparametric mesh with cells at
+# most 10 mm long, the fabric a solid, the fibres tension-only)
+REFERENCE_MODEL = "actuator_fe/2"
 # -, the silicone's bulk modulus over its shear modulus: RTV silicones are nearly incompressible
 # (ν ≈ 0.4995 at this ratio); the Yeoh tube's radius change at this ratio is 0.03 % from the
 # incompressible closed form (gripper.references.yeoh_tube measured 0.17 % at 5000, 1/ratio scaling)
@@ -133,11 +148,19 @@ def build_model(m: ActuatorMesh, bulk_ratio: float = BULK_RATIO):
     forces = []
     if fibre.any():
         alpha = math.radians(a.twist_angle_deg)
-        h = m.hoop[fibre].T[:, None, :]  # (3, 1, cells)
+        f_field = sub_field(fibre)
+        # the winding's direction at every quadrature point (it turns by up to 45° within one of
+        # the coarsest mesh's cells round the top: one direction per cell made the fibre layer
+        # let the duct balloon there)
+        f_region = f_field[0].region
+        shape_functions = f_region.h.reshape(*f_region.h.shape[:2], -1)[:, :, 0]  # (nodes, q): the same in every cell
+        xq = np.einsum("cai,aq->iqc", f_region.mesh.points[f_region.mesh.cells], shape_functions)  # (3, q, cells)
+        tangent = winding_tangent(Geometry(a), xq[0].ravel(), xq[1].ravel())
+        h = np.zeros_like(xq)
+        h[0], h[1] = tangent[:, 0].reshape(xq.shape[1:]), tangent[:, 1].reshape(xq.shape[1:])
         ez = np.array([0.0, 0.0, 1.0])[:, None, None]
         directions = [math.cos(alpha) * h + sign * math.sin(alpha) * ez for sign in (1.0, -1.0)]
         stiffness = np.full((1, int(fibre.sum())), phi * a.fibre_modulus)
-        f_field = sub_field(fibre)
         items.append(fem.SolidBody(fem.Material(fibre_stress, fibre_elasticity, directions=directions,
                                                 stiffness=stiffness), f_field))
         forces.append(fem.SolidBodyForce(f_field, scale=2 * phi * (a.fibre_density - a.silicone_density)))
