@@ -390,7 +390,6 @@ def actuator_mesh(actuator: PneumaticActuator, size: MeshSize) -> ActuatorMesh:
                            axis=2).reshape(-1, 20)
     centre = points[cells[:, :8]].mean(axis=1)
     x, y, z = centre.T
-    tol = 1e-12
     in_duct = np.tile(duct_quads, (nz - 1) // 2) & (z > g.cap) & (z < actuator.length - g.cap)
     keep = ~in_duct
     cells, x, y, z = cells[keep], x[keep], y[keep], z[keep]
