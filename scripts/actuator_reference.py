@@ -1,13 +1,15 @@
 """Paper 001's actuator: the measurements ``docs/pneumatic.md`` shows, regenerated.
 
-    .venv/bin/python scripts/actuator_reference.py convergence   # three meshes, 0-250 kPa (~5 min)
+    .venv/bin/python scripts/actuator_reference.py convergence   # three meshes, 0-250 kPa (~40 min)
+    .venv/bin/python scripts/actuator_reference.py section       # the duct's section under pressure (~3 min)
     .venv/bin/python scripts/actuator_reference.py studies runs/paper001_*   # after the five studies
     .venv/bin/python scripts/actuator_reference.py pictures [--video runs/actuator_inflation.mp4]
 
-``convergence`` solves the sweep on the meshes of refinement 1, 2 and 3
-(:meth:`gripper.references.actuator_mesh.MeshSize.at_refinement`), extrapolates the bending
-angle at 250 kPa (Richardson, with the grid convergence index of Celik et al. 2008) and puts the
-semi-analytical model's curve beside the studies' mesh. ``studies`` collects the five case
+``convergence`` solves the sweep on the mesh levels 1, 2 and 3
+(:meth:`gripper.references.actuator_mesh.MeshSize.at_refinement`; about 3, 10 and 25 minutes on
+one core), extrapolates the bending angle at each pressure (Richardson, with the grid
+convergence index of Celik et al. 2008) and puts the semi-analytical model's curve beside the
+studies' mesh; ``section`` measures the duct's cross-section under pressure. ``studies`` collects the five case
 studies' curves and per-design times from their run folders. Both write
 ``gripper/data/actuator/reference_results.json``, from which the docs build makes the page's
 tables (``docs/hooks/generate.py``); ``pictures`` draws the deformed actuator into
@@ -31,7 +33,8 @@ from gripper.core.atomic import write_text_atomic  # noqa: E402
 from gripper.experiments.actuator_responses import STUDY_REFINEMENT  # noqa: E402
 from gripper.references.actuator_fe import inflate  # noqa: E402
 from gripper.references.actuator_mesh import MeshSize  # noqa: E402
-from gripper.references.bending_moment_model import bending_curve_deg  # noqa: E402
+from gripper.references.actuator_section import duct_section, mid_station  # noqa: E402
+from gripper.references.bending_moment_model import bending_angle_deg, bending_curve_deg  # noqa: E402
 from gripper.references.convergence import richardson  # noqa: E402
 from gripper.references.pneumatic_params import PneumaticActuator  # noqa: E402
 
@@ -132,7 +135,9 @@ def extrapolate(data: dict) -> dict:
 
     sweeps = data["sweeps"]
     ratios = sorted(int(k) for k in sweeps)
-    h = tuple(1.0 / ratio for ratio in ratios)
+    # the representative cell size, (volume / cells)^(1/3) (Celik et al. 2008): the levels share
+    # one volume (to 1e-5), so the cell counts alone set the ratios
+    h = tuple(sweeps[str(r)]["cells"] ** (-1.0 / 3.0) for r in ratios)
     rows = []
     for i, p in enumerate(sweeps[str(ratios[0])]["pressure_kPa"]):
         if i == 0:
@@ -144,7 +149,8 @@ def extrapolate(data: dict) -> dict:
                      "extrapolated_deg": rich.extrapolated, "gci_fine": rich.gci_fine, "gci_by_mesh": gci,
                      "gci_studies_mesh": gci[ratios.index(STUDY_REFINEMENT)],
                      "asymptotic_ratio": rich.asymptotic_ratio})
-    data["richardson"] = {"refinements": ratios, "studies_refinement": STUDY_REFINEMENT, "by_pressure": rows}
+    data["richardson"] = {"refinements": ratios, "studies_refinement": STUDY_REFINEMENT, "by_pressure": rows,
+                          "cell_size_ratios": [h[0] / x for x in h]}
     save(data)
     return data
 
@@ -168,55 +174,22 @@ def studies(data: dict, folders: list[Path]) -> dict:
     return data
 
 
-def _polygon_area_moment(xy: np.ndarray) -> tuple[float, float]:
-    """Area and first moment about y = 0 (∫ y dA) of a closed polygon [m², m³]."""
-    x, y = xy.T
-    x1, y1 = np.roll(x, -1), np.roll(y, -1)
-    cross = x * y1 - x1 * y
-    return float(0.5 * cross.sum()), float((cross * (y + y1)).sum() / 6.0)
-
-
-def duct_section(mesh, deformed: np.ndarray, z0: float) -> dict:
-    """The duct's half cross-section at the station ``z0`` [m] in the deformed shape, in the
-    section's own frame: the section's nodes moved back by the rigid motion that best fits its
-    neutral-layer nodes (which do not stretch; Kabsch), so what is left is the section's change
-    of shape. Returns its area, first moment about the neutral layer's mid-plane (the pressure's
-    lever, :mod:`gripper.references.bending_moment_model`) and height [m², m³, m]."""
-    from gripper.references.actuator_mesh import Geometry
-
-    g = Geometry(mesh.actuator)
-    ref = mesh.quad_points
-    at = np.flatnonzero(np.isclose(ref[:, 2], z0, rtol=0, atol=1e-9))
-    neutral = at[np.abs(ref[at, 1]) <= 0.5 * mesh.actuator.neutral_thickness + 1e-12]
-    a, b = ref[neutral], deformed[neutral]
-    ca, cb = a.mean(axis=0), b.mean(axis=0)
-    u, _, vt = np.linalg.svd((b - cb).T @ (a - ca))
-    rot = u @ np.diag([1.0, 1.0, np.sign(np.linalg.det(u @ vt))]) @ vt  # maps reference to deformed
-    local = (deformed[at] - cb) @ rot + ca
-    on_duct = mesh.duct_surface_points(ref[at])
-    x, y = ref[at, 0], ref[at, 1]
-    wall = on_duct & (y > g.y_centre + 1e-12)
-    flat = on_duct & np.isclose(y, g.y_centre, atol=1e-12)
-    # the half duct's outline: along the flat side from the mid-plane, round the wall, down the mid-plane
-    theta = np.arctan2(y - g.y_centre, x)
-    order = np.r_[np.flatnonzero(flat)[np.argsort(x[flat])], np.flatnonzero(wall)[np.argsort(theta[wall])]]
-    outline = local[order][:, :2]
-    outline = np.vstack([outline, [0.0, outline[-1, 1]], [0.0, outline[0, 1]]]) if outline[-1, 0] > 1e-12 else outline
-    area, moment = _polygon_area_moment(outline)
-    return {"area": area, "first_moment": moment, "height": float(outline[:, 1].max() - outline[:, 1].min())}
-
-
 def section_check(data: dict) -> dict:
     """How the duct's cross-section changes under pressure at mid-length (the semi-analytical
     model's assumption that it keeps its shape), on the studies' mesh."""
     r = inflate(PneumaticActuator(), PRESSURES, MeshSize.at_refinement(STUDY_REFINEMENT), keep_shapes=True)
-    z_levels = np.unique(np.round(r.mesh.points[:, 2], 12))  # the cells' ends, where every section node is
-    z0 = float(z_levels[np.argmin(np.abs(z_levels - 0.5 * r.mesh.actuator.length))])
+    z0 = mid_station(r.mesh)
     rows = [duct_section(r.mesh, s, z0) for s in r.shapes]
     data["section"] = {"z_m": z0, "pressure_kPa": (r.pressures / 1e3).tolist(),
                        "area_ratio": [row["area"] / rows[0]["area"] for row in rows],
                        "first_moment_ratio": [row["first_moment"] / rows[0]["first_moment"] for row in rows],
                        "height_ratio": [row["height"] / rows[0]["height"] for row in rows]}
+    # the moment balance again, its pressure's lever the deformed section's (p Q(p) for p Q₀):
+    # what is left between it and the finite elements is not the section's change of shape
+    q_ratio = data["section"]["first_moment_ratio"]
+    data["section"]["semi_analytical_deformed_deg"] = [
+        bending_angle_deg(PneumaticActuator(), float(p) * q) for p, q in zip(r.pressures, q_ratio, strict=True)]
+    data["section"]["finite_element_deg"] = (r.angles_deg - r.angles_deg[0]).tolist()
     save(data)
     for p, row in zip(r.pressures, rows, strict=True):
         print(f"{p / 1e3:5.0f} kPa: duct area x{row['area'] / rows[0]['area']:.3f}, "

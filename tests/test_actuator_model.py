@@ -161,7 +161,7 @@ def test_fibre_energy_stress_and_tangent_are_its_derivatives():
 def coarse_sweep():
     from gripper.references.actuator_fe import inflate
 
-    return inflate(PneumaticActuator(), [0.0, 12.5e3, 25e3], MeshSize.at_refinement(1))
+    return inflate(PneumaticActuator(), [0.0, 12.5e3, 25e3], MeshSize.at_refinement(1), keep_shapes=True)
 
 
 def test_inflation_bends_towards_the_neutral_layer_and_grows_with_pressure(coarse_sweep):
@@ -174,14 +174,25 @@ def test_inflation_bends_towards_the_neutral_layer_and_grows_with_pressure(coars
     assert 0 < r.angles_deg[1] - r.angles_deg[0] < r.angles_deg[2] - r.angles_deg[0]
 
 
-def test_small_pressure_bending_near_the_semi_analytical_model(coarse_sweep):
-    """At 25 kPa the section hardly deforms, the regime the semi-analytical moment balance
-    assumes. The 3-D model's sealing caps leave 130 of the 140 mm to bend (-7 %), and the coarse
-    mesh is measured 20 % below the fine one at this pressure (docs/pneumatic.md): within 30 %."""
+def test_bending_matches_the_semi_analytical_model_given_the_sections_change(coarse_sweep):
+    """The semi-analytical moment balance keeps the reference cross-section; the finite-element
+    section does not (the fibre holds its perimeter, not its shape: the flat-bottomed "D" rounds
+    out and the duct grows). Given the finite-element section's own lever, the pressure's first
+    moment of the deformed duct at mid-length, the moment balance must give the finite elements'
+    bend at 25 kPa: within 10 %, the size of what it still leaves out (the sealing caps leave 130
+    of the 140 mm to bend, -7 %; the fabric's own plate stiffness, 1.6 % of the section's at
+    0.2 mm; the fibres' share of the axial stretch). Without the section's change it is 27 %
+    short (measured: 11.6° against 16.0°)."""
+    from gripper.references.actuator_section import duct_section, mid_station
     from gripper.references.bending_moment_model import bending_angle_deg
 
-    fe = coarse_sweep.angles_deg[2] - coarse_sweep.angles_deg[0]
-    assert fe == pytest.approx(bending_angle_deg(PneumaticActuator(), 25e3), rel=0.30)
+    r = coarse_sweep
+    z0 = mid_station(r.mesh)
+    first_moment = [duct_section(r.mesh, shape, z0)["first_moment"] for shape in r.shapes]
+    lever = first_moment[2] / first_moment[0]
+    assert lever > 1.2  # the duct grows: the effect is there to be accounted for
+    fe = r.angles_deg[2] - r.angles_deg[0]
+    assert fe == pytest.approx(bending_angle_deg(PneumaticActuator(), 25e3 * lever), rel=0.10)
 
 
 def test_inflation_is_deterministic(coarse_sweep):

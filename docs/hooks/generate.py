@@ -169,13 +169,16 @@ def _actuator_convergence() -> str:
     data = _actuator_results()
     if "richardson" not in data:
         return "*Not measured yet: run `scripts/actuator_reference.py convergence`.*"
-    rows = ["| refinement | cells | unknowns | bending at 250 kPa [deg] | sweep time [s] |", "|---|---|---|---|---|"]
+    rows = ["| level | cells | unknowns | bending at 250 kPa [deg] | sweep time [s] |", "|---|---|---|---|---|"]
     for ratio, sw in sorted(data["sweeps"].items(), key=lambda kv: int(kv[0])):
         rows.append(f"| {ratio} | {sw['cells']} | {sw['unknowns']} | {sw['angle_deg'][-1]:.2f} | "
                     f"{sw['wall_time_s']:.0f} |")
     r = data["richardson"]
-    rows += ["", "The bending (less gravity's 0.7° at 0 kPa) extrapolated at each pressure:", "",
-             "| pressure [kPa] | " + " | ".join(f"refinement {k} [deg]" for k in r["refinements"])
+    gravity = data["sweeps"][str(r["studies_refinement"])]["angle_deg"][0]
+    ratios = ", ".join(f"{x:.2f}" for x in r.get("cell_size_ratios", []))
+    rows += ["", f"The bending (less gravity's {gravity:.1f}° at 0 kPa) extrapolated at each pressure "
+                 f"(cell sizes relative to level 1: 1/({ratios})):", "",
+             "| pressure [kPa] | " + " | ".join(f"level {k} [deg]" for k in r["refinements"])
              + " | order p | extrapolated [deg] | GCI finest | GCI studies' mesh |",
              "|---" * (len(r["refinements"]) + 5) + "|"]
     for row in r["by_pressure"]:
@@ -197,6 +200,22 @@ def _actuator_check() -> str:
             "| semi-analytical [deg] | " + " | ".join(f"{a:.1f}" for a in sa["angle_deg"]) + " |",
             "| FE / semi-analytical | - | "
             + " | ".join(f"{f / a:.2f}" for f, a in zip(fe["angle_deg"][1:], sa["angle_deg"][1:], strict=True)) + " |"]
+    return "\n".join(rows)
+
+
+def _actuator_section() -> str:
+    data = _actuator_results()
+    if "section" not in data:
+        return "*Not measured yet: run `scripts/actuator_reference.py section`.*"
+    sec = data["section"]
+    rows = ["| pressure [kPa] | duct area | duct height | pressure's lever (first moment) | "
+            "finite elements [deg] | moment balance with that lever [deg] |", "|---|---|---|---|---|---|"]
+    for i, p in enumerate(sec["pressure_kPa"]):
+        if i == 0:
+            continue
+        rows.append(f"| {p:g} | ×{sec['area_ratio'][i]:.2f} | ×{sec['height_ratio'][i]:.2f} | "
+                    f"×{sec['first_moment_ratio'][i]:.2f} | {sec['finite_element_deg'][i]:.1f} | "
+                    f"{sec['semi_analytical_deformed_deg'][i]:.1f} |")
     return "\n".join(rows)
 
 
@@ -240,7 +259,8 @@ MARKERS = {"<!-- rl-hyperparams -->": _rl_hyperparams, "<!-- version -->": _vers
            "<!-- protocol-table -->": _protocol_table, "<!-- sensing-table -->": _sensing_table,
            "<!-- depth-camera-table -->": _depth_camera_table,
            "<!-- actuator-convergence -->": _actuator_convergence, "<!-- actuator-check -->": _actuator_check,
-           "<!-- actuator-studies -->": _actuator_studies, "<!-- pneumatic-finger-table -->": _pneumatic_finger_table,
+           "<!-- actuator-studies -->": _actuator_studies, "<!-- actuator-section -->": _actuator_section,
+           "<!-- pneumatic-finger-table -->": _pneumatic_finger_table,
            "<!-- regulator-table -->": _regulator_table, "<!-- pressure-sensing-table -->": _pressure_sensing_table,
            "<!-- pneumatic-calibration -->": _pneumatic_calibration}
 

@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v9``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v10``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v9")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v10")``.
 """
 
 from __future__ import annotations
@@ -241,7 +241,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v9", **kwargs)``: the fields of
+    ``gymnasium.make("gripper:SoftGripperGrasp-v10", **kwargs)``: the fields of
     :class:`gripper.envs.config.EnvConfig` (each declared once there, with its unit, range and
     reason; the table is generated into ``docs/environment.md``), ``params`` (a GripperParams or
     a parameter file), ``calibration`` (a ``gripper calibrate`` file) and the renderer's
@@ -314,7 +314,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v9", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v10", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """
