@@ -143,7 +143,16 @@ def extrapolate(data: dict) -> dict:
         if i == 0:
             continue
         f = tuple(sweeps[str(r)]["angle_deg"][i] - sweeps[str(r)]["angle_deg"][0] for r in ratios)
-        rich = richardson(h, f)
+        studies = f[ratios.index(STUDY_REFINEMENT)]
+        if (f[1] - f[0]) * (f[2] - f[1]) <= 0:
+            # oscillatory convergence: no observed order exists (Celik et al. 2008); the
+            # uncertainty is then half the three solutions' range (Stern et al. 2001), here
+            # relative to the studies' mesh's value
+            rows.append({"pressure_kPa": p, "angles_deg": list(f), "order": None, "extrapolated_deg": None,
+                         "oscillation_range": (max(f) - min(f)) / abs(studies),
+                         "uncertainty_studies_mesh": 0.5 * (max(f) - min(f)) / abs(studies)})
+            continue
+        rich = richardson(h, f)  # raises when the observed order is outside 0.05-10
         gci = [GCI_SAFETY_FACTOR * abs(fi - rich.extrapolated) / abs(fi) for fi in f]
         rows.append({"pressure_kPa": p, "angles_deg": list(f), "order": rich.order,
                      "extrapolated_deg": rich.extrapolated, "gci_fine": rich.gci_fine, "gci_by_mesh": gci,

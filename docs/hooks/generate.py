@@ -182,9 +182,13 @@ def _actuator_convergence() -> str:
              + " | order p | extrapolated [deg] | GCI finest | GCI studies' mesh |",
              "|---" * (len(r["refinements"]) + 5) + "|"]
     for row in r["by_pressure"]:
-        rows.append(f"| {row['pressure_kPa']:g} | " + " | ".join(f"{a:.2f}" for a in row["angles_deg"])
-                    + f" | {row['order']:.2f} | {row['extrapolated_deg']:.2f} | {100 * row['gci_fine']:.1f} % | "
-                    f"**{100 * row['gci_studies_mesh']:.1f} %** |")
+        angles = f"| {row['pressure_kPa']:g} | " + " | ".join(f"{a:.2f}" for a in row["angles_deg"])
+        if row["order"] is None:
+            rows.append(angles + " | oscillatory | - | - | "
+                        f"**±{100 * row['uncertainty_studies_mesh']:.2f} %** (half the range) |")
+            continue
+        rows.append(angles + f" | {row['order']:.2f} | {row['extrapolated_deg']:.2f} | {100 * row['gci_fine']:.2f} % | "
+                    f"**{100 * row['gci_studies_mesh']:.2f} %** |")
     return "\n".join(rows)
 
 

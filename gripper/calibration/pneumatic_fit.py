@@ -48,7 +48,7 @@ TIP_SIGMA = 1.0e-3  # m, scale of the tip residuals (as the cable fit's)
 HELD_OUT_KPA = (125.0,)  # the middle of the 0-250 kPa sweep
 FIT_PARAMETERS = ("bending_stiffness", "stiffening", "knee_curvature", "moment_per_pascal", "root_stiffness")
 # Bounds [SI]: EI from a silicone strip to a plastic one; the knee within the sweep's curvature
-# (82° over 140 mm is 10 1/m); the moment per pascal of a duct 1-50 mm across.
+# (91° over 140 mm is 11 1/m); the moment per pascal of a duct 1-50 mm across.
 BOUNDS = {"bending_stiffness": (1e-5, 1.0), "stiffening": (1e-6, 1.0), "knee_curvature": (1e-3, 20.0),
           "moment_per_pascal": (1e-9, 1e-5), "root_stiffness": (1e-4, 100.0)}
 REST_TOL = 1e-10  # N·m, the static solve's force-balance tolerance per hinge
@@ -306,7 +306,7 @@ DOCS_REPORT = PNEUMATIC_CALIBRATION_FILE.parents[4] / "docs" / "pneumatic_calibr
 def calibrate_pneumatic(out_dir: str | Path, params: GripperParams | None = None, *,
                         on_progress=None) -> tuple[dict, PneumaticFit, ActuatorRecord]:
     """``gripper calibrate --reference actuator``: the finite-element reference of paper 001's
-    default actuator (about 1.5 minutes on 2 cores), the fit (under a second), and the files
+    default actuator (about 4 minutes on 2 cores), the fit (under a second), and the files
     ``PNEUMATIC_FILES`` in ``out_dir``. ``params``: the chain's segment count and the regulator
     (the design's shape is the actuator's).
 

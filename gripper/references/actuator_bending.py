@@ -16,7 +16,7 @@ Two load cases, both on the studies' mesh (``STUDY_REFINEMENT``; its convergence
   towards its neutral layer under its own weight): the bending stiffness on its own, which the
   inflation cannot separate from the pressure's moment (both scale the bend alike).
 
-Example (about a minute and a half; the tip (x, z) at 250 kPa):
+Example (about four minutes; the tip (x, z) at 250 kPa):
     >>> from gripper.references.actuator_bending import run_actuator_reference
     >>> rec = run_actuator_reference()        # doctest: +SKIP
     >>> rec.tip[-1]                           # doctest: +SKIP

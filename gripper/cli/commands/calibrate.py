@@ -29,7 +29,7 @@ def add(sub) -> None:
                      help="reference kind: the continuum body (default), paper 000's flexible "
                           "multibody model (elements as flexible bodies, Table 2's hinge springs), or "
                           "'actuator': the pneumatic finger fitted to paper 001's actuator in finite "
-                          "elements (0-250 kPa and its sag; about 1.5 minutes)")
+                          "elements (0-250 kPa and its sag; about 4 minutes)")
     cal.add_argument("--reading", choices=("per_degree", "per_radian"), default="per_degree",
                      help="fmbs: read Table 2's 1.9e-3 spring per degree (as printed) or per radian")
     cal.add_argument("--no-converge", action="store_true",

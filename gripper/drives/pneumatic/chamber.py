@@ -11,8 +11,8 @@ Structure (names ``f{k}_`` for finger k, as the cable finger's):
   actuator's cross-section (a half-disc back on a rectangle, convex) swept along its length.
 - hinge ``hinge1`` at the clamp: the root's compliance, lumped (``root_stiffness``). In the
   finite-element reference the neutral layer turns sharply within the first few millimetres
-  past the clamp (22° at 250 kPa, where the solid 5 mm end cap shears), then bends uniformly;
-  a chain with no root hinge misses the tip by 4 % of the length at 250 kPa.
+  past the clamp (17° over the first 5 mm at 250 kPa, where the solid 5 mm end cap shears), then
+  bends uniformly; a chain with no root hinge missed the tip by 4 % of the length at 250 kPa.
 - hinge ``hinge{j}`` (j = 2..n) on the neutral layer's mid-plane (``PneumaticFinger.hinge_z``), so
   the fabric layer keeps its length however the finger bends; spring EI / pitch; damping
   ``damping_ratio`` of critical for that spring on the tip segment's inertia about its hinge
@@ -50,7 +50,7 @@ from gripper.parts.pads import VERTEX_GRID
 BACK_POINTS = 13
 # A hinge's range [rad]: backwards to the first contact of the round backs (assumed: 30°, a
 # margin before neighbouring segments' 45° chamfer-free backs would meet), forwards far past the
-# calibrated bend (the reference reaches 82° over seven hinges, 12° each).
+# calibrated bend (the reference reaches 91° over seven hinges and the root, 13° each at most).
 HINGE_RANGE = (-math.radians(30.0), math.radians(80.0))
 
 
