@@ -311,6 +311,10 @@ class SoftGripperGraspEnv(gym.Env):
       the pads' micrometre grid, as its committed model file (``models/pneumatic_gripper``) holds
       them, so its episodes move by up to 0.04 % in a force. The spaces, rewards and episode
       rules are unchanged. v8 is no longer registered.
+    - v10, package 0.20.0: the pneumatic finger recalibrated from the corrected finite-element
+      model of paper 001's actuator (``docs/pneumatic.md``): its springs, stiffening, knee and
+      chamber moment change, so the pneumatic gripper's episodes change. The cable gripper's
+      are v9's. The spaces, rewards and episode rules are unchanged. v9 is no longer registered.
 
     Example:
         >>> import gymnasium as gym

@@ -27,8 +27,8 @@ Example:
     >>> F = np.diag([1.0, 1.1, 1.0])[:, :, None, None]          # 10 % stretch along y
     >>> a = np.array([0.0, 1.0, 0.0])[:, None, None]             # a fibre along y
     >>> P, _ = fibre_stress([F, None], directions=[a], stiffness=np.ones((1, 1)))
-    >>> round(float(P[1, 1, 0, 0]), 4)   # F S = 1.1 * (1.21 - 1) / 2
-    0.1155
+    >>> round(float(P[1, 1, 0, 0]), 4)   # F S = 1.1 * (1.21 - 1 - δ/2) / 2, δ the toe band
+    0.1152
 """
 
 from __future__ import annotations
