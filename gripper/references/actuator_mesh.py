@@ -255,8 +255,8 @@ def _grid_quads(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     of edges 0-1, 1-2, 2-3, 3-0."""
     mi, mj = points.shape[:2]
     idx = np.arange(mi * mj).reshape(mi, mj)
-    i, j = np.meshgrid(np.arange(0, mi - 1, 2), np.arange(0, mj - 1, 2), indexing="ij")
-    i, j = i.ravel(), j.ravel()
+    grid_i, grid_j = np.meshgrid(np.arange(0, mi - 1, 2), np.arange(0, mj - 1, 2), indexing="ij")
+    i, j = grid_i.ravel(), grid_j.ravel()
     cells = np.stack([idx[i, j], idx[i + 2, j], idx[i + 2, j + 2], idx[i, j + 2],
                       idx[i + 1, j], idx[i + 2, j + 1], idx[i + 1, j + 2], idx[i, j + 1]], axis=-1)
     return points.reshape(-1, 2), cells
