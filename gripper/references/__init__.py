@@ -6,5 +6,9 @@ apart from the fitting code (:mod:`gripper.calibration`):
   (``continuum_checks``) and its static points relaxed to rest (``relaxation``);
 - ``fmbs``: paper 000's own flexible multibody model of the finger;
 - ``yeoh_tube``: the Yeoh thick-walled tube, exact and by FElupe, the first check of paper 001's
-  pneumatic actuator model.
+  pneumatic actuator model;
+- paper 001's actuator: its parameters (``pneumatic_params``), mesh (``actuator_mesh``), fibre
+  (``fibre_materials``), finite-element sweep (``actuator_fe``), its duct's deformed section
+  (``actuator_section``), the semi-analytical moment balance (``bending_moment_model``) and the
+  pneumatic finger's calibration reference (``actuator_bending``).
 """
