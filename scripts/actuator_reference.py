@@ -114,7 +114,7 @@ def convergence(data: dict) -> dict:
         points, cells = r.mesh.quadratic()
         sweeps[str(ratio)] = {"pressure_kPa": (r.pressures / 1e3).tolist(), "angle_deg": r.angles_deg.tolist(),
                               "cells": int(len(cells)), "unknowns": int(3 * len(points)),
-                              "wall_time_s": round(r.wall_time_s, 1)}
+                              "wall_time_s": round(r.wall_time_s, 1), "newton_iterations": r.newton_iterations}
         print(f"refinement {ratio}: {r.angles_deg[-1]:.3f} deg at 250 kPa, {len(cells)} cells, "
               f"{r.wall_time_s:.0f} s", flush=True)
         save(data)

@@ -9,7 +9,15 @@ import math
 import numpy as np
 import pytest
 
-from gripper.references.actuator_mesh import FIBRE, HEX20_EDGES, NEUTRAL, Geometry, MeshSize, actuator_mesh
+from gripper.references.actuator_mesh import (
+    FIBRE,
+    HEX20_EDGES,
+    NEUTRAL,
+    Geometry,
+    MeshSize,
+    actuator_mesh,
+    winding_tangent,
+)
 from gripper.references.fibre_materials import TENSION_ONLY_BAND, fibre_elasticity, fibre_stress, ramp
 from gripper.references.pneumatic_params import FIG17_SEGMENTS, PneumaticActuator
 
@@ -93,7 +101,8 @@ def test_mesh_materials_and_segments():
     assert not np.any((neutral_z > 0.085) & (neutral_z < 0.100))
     assert np.any((neutral_z > 0.045) & (neutral_z < 0.085))
     # every fibre cell has a unit hoop direction in the cross-section's plane
-    h = m.hoop[m.material == FIBRE]
+    c = m.centroids[m.material == FIBRE]
+    h = np.column_stack([winding_tangent(Geometry(a), c[:, 0], c[:, 1]), np.zeros(len(c))])
     assert np.allclose(np.linalg.norm(h, axis=1), 1.0) and np.allclose(h[:, 2], 0.0)
 
 

@@ -109,13 +109,13 @@ MESH_FAMILY = {1: (2, 1, 1, 0.01), 2: (3, 2, 1, 0.02 / 3), 3: (4, 2, 1, 0.005)}
 @dataclass(frozen=True)
 class ActuatorMesh:
     """The swept mesh: ``points`` (n, 3) [m], ``cells`` (m, 8) hexahedra in VTK order, each cell's
-    ``material`` (SILICONE, FIBRE, NEUTRAL) and, for the fibre cells, ``hoop`` (m, 3): the unit
-    tangent of the winding's cross-section path (zero elsewhere)."""
+    ``material`` (SILICONE, FIBRE, NEUTRAL), and the same as twenty-node cells (``quad_points``,
+    ``quad_cells``). The winding's direction in the fibre cells is :func:`winding_tangent`'s, taken
+    at each quadrature point by the model."""
 
     points: np.ndarray
     cells: np.ndarray
     material: np.ndarray
-    hoop: np.ndarray
     actuator: PneumaticActuator
     size: MeshSize
     quad_points: np.ndarray
@@ -409,7 +409,5 @@ def actuator_mesh(actuator: PneumaticActuator, size: MeshSize) -> ActuatorMesh:
     material = np.full(len(cells), SILICONE)
     material[fibre] = FIBRE
     material[neutral] = NEUTRAL
-    hoop = np.zeros((len(cells), 3))
-    hoop[fibre, :2] = winding_tangent(g, x[fibre], y[fibre])
-    return ActuatorMesh(points=points, cells=cells, material=material, hoop=hoop, actuator=actuator, size=size,
+    return ActuatorMesh(points=points, cells=cells, material=material, actuator=actuator, size=size,
                         quad_points=quad_points, quad_cells=quad_cells)
