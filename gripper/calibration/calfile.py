@@ -49,9 +49,14 @@ class CalibrationMismatch(ValueError):
 
 
 def design_hash(p: GripperParams) -> str:
-    """Hash of what the body's bending depends on: finger geometry, material, cable [hex]."""
+    """Hash of what the body's bending depends on: finger geometry, material, cable [hex].
+
+    The tip's taper (``finger.tip_taper``) is left out: the tip element lies distal of the last
+    hinge, so its shape moves no spring, and the bending test is horizontal (its weight loads the
+    bearings). A tapered design keeps its square tip's calibration."""
     d = p.to_dict()
-    return stable_hash({k: d[k] for k in ("finger", "material", "cable")})
+    finger = {k: v for k, v in d["finger"].items() if k != "tip_taper"}
+    return stable_hash({"finger": finger, "material": d["material"], "cable": d["cable"]})
 
 
 @dataclass(frozen=True)

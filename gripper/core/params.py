@@ -125,6 +125,11 @@ def committed_pneumatic() -> dict[str, float]:
 
 
 
+# The silicone wall left each side of the cable hole at a tapered tip [m] (assumed: 1 mm, a
+# wall a cast mould fills reliably; the anchor's pull-out is not modelled).
+TIP_WALL = 0.001
+
+
 @dataclass(frozen=True)
 class FingerGeometry(Validated):
     """Geometry of one finger: a silicone bar cut by triangular notches into elements.
@@ -146,6 +151,11 @@ class FingerGeometry(Validated):
         hole_height: height of the cable-hole axis above the back face.
         hole_diameter: diameter of the cable holes.
         extension_limit_deg: how far a hinge may bend backwards (opening the cut).
+        tip_taper: the tip element's width at its distal end over ``width``: 1 is the square tip
+            of paper 000's photograph; below 1 the tip element narrows linearly along its length
+            (a tapered fingertip, as soft grippers give their tips to reach between neighbours
+            and pick small parts). It stops at ``hole_diameter`` plus a 1 mm wall on each side,
+            round the cable's anchor.
     """
 
     SECTION = "finger"
@@ -166,6 +176,9 @@ class FingerGeometry(Validated):
     hole_diameter: float = param(0.006, "m", within=FINGER_FEATURE, source="paper 000 §II: 6 mm")
     extension_limit_deg: float = param(5.0, "deg", ge=0, le=90,
                                        source="assumed: the bridge and closed back face resist extension")
+    tip_taper: float = param(1.0, "-", gt=0, le=1,
+                             source="assumed: square, as paper 000's photograph (a design field of the gripping-range "
+                             "study, docs/envelope.md)")
 
     @property
     def n_hinges(self) -> int:
@@ -213,6 +226,16 @@ class FingerGeometry(Validated):
                 f"finger.cut_angle_deg: cuts of {self.cut_angle_deg:g}° would meet at the "
                 f"grasping face; need 2·(height-bridge)·tan(angle/2) < pitch "
                 f"({self.pitch:g} m)")
+        least = (self.hole_diameter + 2.0 * TIP_WALL) / self.width
+        if self.tip_taper < least:
+            raise ValueError(
+                f"finger.tip_taper: the tip must keep the cable hole and a {TIP_WALL * 1e3:g} mm wall on each side, "
+                f"so at least (hole_diameter + {2e3 * TIP_WALL:g} mm) / width = {least:.3g}, got {self.tip_taper!r}")
+
+    @property
+    def tip_width(self) -> float:
+        """The tip element's width at its distal end [m]."""
+        return self.tip_taper * self.width
 
 
 # RTV 230 silicone's Yeoh coefficients C10, C20, C30 [Pa]: paper 001 §2.3 Step 2 ("C1 = 0.11596,
@@ -443,6 +466,10 @@ class LiftAxis(Validated):
         damping_ratio: damping ratio of each axis with the palm mass.
         max_force: force limit of each axis.
         home_height: palm-face height above the floor at zero lift.
+        yaw_enabled: add the wrist: a rotary axis turning the palm about its own (vertical) axis,
+            so that the grasp can meet a long part across its width.
+        yaw_stiffness: position gain of the wrist.
+        yaw_max_torque: torque limit of the wrist.
     """
 
     SECTION = "lift"
@@ -455,6 +482,11 @@ class LiftAxis(Validated):
     max_force: float = param(60.0, "N", within=STAGE_FORCE, source="assumed: a small linear stage")
     home_height: float = param(0.25, "m", within=STAGE_TRAVEL,
                                source="assumed: 96 mm fingers clear a 100 mm object with room to approach")
+    yaw_enabled: bool = param(True, "-", source="the grasp turns the palm to the part's footprint (0.21.0)")
+    yaw_stiffness: float = param(10.0, "N·m/rad", gt=0, le=1e4,
+                                 source="assumed: the linear axes' bandwidth (about 100 rad/s) on the palm's "
+                                 "1e-3 kg·m² about its axis")
+    yaw_max_torque: float = param(2.0, "N·m", gt=0, le=1e3, source="assumed: a small rotary stage")
 
 
 @dataclass(frozen=True)

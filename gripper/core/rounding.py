@@ -71,19 +71,27 @@ def _ball_directions(n_arc: int) -> np.ndarray:
 
 
 def rounded_prism(profile_xz: np.ndarray, width: float, radius: float,
-                  n_arc: int = ARC_POINTS) -> np.ndarray:
+                  n_arc: int = ARC_POINTS, *, taper: float = 1.0) -> np.ndarray:
     """Points (n, 3) of the prism of convex profile ``profile_xz`` (x, z; counter-clockwise in the
     x-z plane seen from -y) extruded over y in [-width/2, width/2], every edge and corner rounded
-    to ``radius`` (a ball swept over the prism shrunk by ``radius``)."""
+    to ``radius`` (a ball swept over the prism shrunk by ``radius``). ``taper``: the width at the
+    profile's largest x over ``width``, the width changing linearly with x between (a wedge in
+    plan view; 1: a straight prism)."""
+    x0, x1 = float(profile_xz[:, 0].min()), float(profile_xz[:, 0].max())
+
+    def half(x: np.ndarray, inset: float) -> np.ndarray:
+        return 0.5 * width * (1.0 + (taper - 1.0) * (x - x0) / (x1 - x0)) - inset
+
     if radius == 0:
-        half = 0.5 * width
-        return np.vstack([np.column_stack([profile_xz[:, 0], np.full(len(profile_xz), s), profile_xz[:, 1]])
-                          for s in (half, -half)])
-    if radius >= 0.5 * width:
-        raise ValueError(f"rounded_prism: radius {radius:g} m must be below half the width {width:g} m")
+        return np.vstack([np.column_stack([profile_xz[:, 0], s * half(profile_xz[:, 0], 0.0), profile_xz[:, 1]])
+                          for s in (1.0, -1.0)])
+    if radius >= 0.5 * width * min(1.0, taper):
+        raise ValueError(f"rounded_prism: radius {radius:g} m must be below half the narrowest width "
+                         f"{width * min(1.0, taper):g} m")
     core = inset_polygon(profile_xz, radius)
-    half = 0.5 * width - radius
-    corners = np.vstack([np.column_stack([core[:, 0], np.full(len(core), s), core[:, 1]]) for s in (half, -half)])
+    # the wedge's sides inset by the radius along their own normal, close enough for the small
+    # angles of a tapered fingertip (the normal's tilt changes the inset by 1 - cos)
+    corners = np.vstack([np.column_stack([core[:, 0], s * half(core[:, 0], radius), core[:, 1]]) for s in (1.0, -1.0)])
     ball = radius * _ball_directions(n_arc)
     return (corners[:, None, :] + ball[None, :, :]).reshape(-1, 3)
 

@@ -80,7 +80,7 @@ class Drive(ABC):
     effort_display_scale: ClassVar[float] = 1.0
     effort_format: ClassVar[str] = "4.1f"
     #: design-study responses this drive can run (``gripper.studies.study_file.RESPONSES``)
-    responses: ClassVar[tuple[str, ...]] = ("grasp", "holding_force", "envelope")
+    responses: ClassVar[tuple[str, ...]] = ("grasp", "holding_force", "envelope", "payload", "parts")
     #: the environment's observation parts of this drive, (name, unit) with one entry per finger
     #: each: after the hinge velocities, and at the end (what the hardware reports)
     state_observations: ClassVar[tuple[tuple[str, str], ...]] = ()
@@ -109,6 +109,11 @@ class Drive(ABC):
     @abstractmethod
     def finger_height(self) -> float:
         """From the finger's back to its grasping face [m]."""
+
+    @property
+    @abstractmethod
+    def finger_width(self) -> float:
+        """Across the finger, at its base [m]."""
 
     @abstractmethod
     def names(self, k: int) -> FingerNames:

@@ -15,11 +15,19 @@ Two grasps:
   the palm the fingers reach at each spool angle, simulated once per design), never the object,
   and it stops ``palm_clearance`` above the sensed top.
 
+The wrist (:func:`wrist_turn`, ``GraspProtocol.wrist``) turns the palm, during the approach, to
+the sensed footprint's smallest enclosing rectangle: a finger onto its short axis, so that a
+finger pair closes across a long part's width (a four-finger palm turns at most 45°). A part
+longer than the opening (its half-length at least :func:`open_radius`) is *straddled*: its
+long axis between two neighbouring fingers, which close on it from both sides, provided its
+half-width leaves :data:`STRADDLE_MARGIN` to the fingers' nearest corners (:func:`straddle_gap`).
+
 The rule (:func:`choose_grasp`), from geometry: the fingertip grasp when the straight
 fingertips can reach the support beside the object, that is when the sensed top is at least
 ``palm_clearance`` below the palm at the fingertip grasp's start, and the sensed footprint's
-radius (its farthest point from its centroid) is inside the open fingers' grasping faces
-(``layout.palm_radius``); otherwise
+extent along the fingers after the wrist's turn (half its length; its radius, the farthest
+point from its centroid, when the wrist does not turn) is inside the open fingers' grasping
+faces at the tips (:func:`open_radius`), or the part is straddled; otherwise
 (a tall object, or one the tips would land on) the envelope. The palm is centred over the
 sensed footprint's centroid (``GraspProtocol.centre``), clamped to the stage's travel.
 
@@ -27,6 +35,8 @@ Example:
     >>> from gripper.experiments.approach import GRASPS
     >>> GRASPS
     ('envelope', 'fingertip')
+    >>> from gripper.core.params import GripperParams
+    >>> round(straddle_gap(GripperParams()) * 1e3, 1)     # mm, at the default's open tips
 """
 
 from __future__ import annotations
@@ -43,6 +53,12 @@ from gripper.drives import drive_for
 from gripper.sim.depth import ObjectEstimate
 
 GRASPS = ("envelope", "fingertip")
+# How the turned palm meets the footprint: not turned, a finger across its width, or straddling it.
+POSES = ("none", "across", "straddle")
+# What a straddled part's side leaves to the open fingers' nearest corners [m] (assumed: the
+# palm camera's width and centroid errors, under 1 mm each on the parts measured in
+# docs/controller.md, with room for the part's placement noise in the turn).
+STRADDLE_MARGIN = 0.003
 
 # The settling time at each command of the free-closing reach's table (the commands are the
 # drive's ``reach_commands``) [s]: holding each spool angle 0.8 s instead moves the table by at
@@ -62,6 +78,8 @@ class ApproachPlan:
         palm_z: palm-face height at the end of the approach.
         support_z: the support surface's height the plan was made for.
         floor_z: the lowest the palm face may go (``palm_clearance`` above the sensed top).
+        yaw: the wrist's angle [rad].
+        pose: how the fingers meet the footprint (:data:`POSES`).
     """
 
     grasp: str
@@ -70,22 +88,60 @@ class ApproachPlan:
     palm_z: float
     support_z: float
     floor_z: float = -math.inf
+    yaw: float = 0.0
+    pose: str = "none"
 
 
-def choose_grasp(est: ObjectEstimate, p: GripperParams, proto) -> str:
-    """The rule of the module docstring; ``proto.grasp`` other than ``auto`` forces one."""
+def open_radius(p: GripperParams) -> float:
+    """How far the open, straight fingers' grasping faces stand from the palm axis at their tips
+    [m]: the palm radius plus the finger's length times the sine of its splay
+    (``layout.mount_tilt_deg``; 40 mm for the 0.20.0 design, whose fingers hang straight)."""
+    return p.layout.palm_radius + drive_for(p).finger_length * math.sin(math.radians(p.layout.mount_tilt_deg))
+
+
+def straddle_gap(p: GripperParams) -> float:
+    """How far the open fingers' nearest corners stand, at their tips, from a line through the
+    palm axis midway between two neighbouring fingers [m]: R sin(π/n) - (w/2) cos(π/n), R the
+    :func:`open_radius`, n the fingers, w the finger's width (22.6 mm for a 40 mm opening and four
+    16 mm fingers)."""
+    n = p.layout.n_fingers
+    return open_radius(p) * math.sin(math.pi / n) - 0.5 * drive_for(p).finger_width * math.cos(math.pi / n)
+
+
+def wrist_turn(est: ObjectEstimate, p: GripperParams, proto) -> tuple[float, str]:
+    """The wrist's angle [rad], in [-π/n, π/n), and the pose (:data:`POSES`) of the module
+    docstring for the estimate ``est``."""
+    if proto.wrist == "fixed" or not p.lift.yaw_enabled or p.layout.n_fingers < 2:
+        return 0.0, "none"
+    n = p.layout.n_fingers
+    period = 2.0 * math.pi / n
+    target = est.yaw + 0.5 * math.pi  # a finger on the short axis
+    pose = "across"
+    if 0.5 * est.length >= open_radius(p) and 0.5 * est.width + STRADDLE_MARGIN <= straddle_gap(p):
+        target, pose = est.yaw + math.pi / n, "straddle"  # the long axis midway between two fingers
+    yaw = (target + 0.5 * period) % period - 0.5 * period
+    return float(yaw), pose
+
+
+def choose_grasp(est: ObjectEstimate, p: GripperParams, proto, pose: str | None = None) -> str:
+    """The rule of the module docstring; ``proto.grasp`` other than ``auto`` forces one.
+    ``pose``: the wrist's (:func:`wrist_turn`'s, when not given)."""
     if proto.grasp != "auto":
         return proto.grasp
+    if pose is None:
+        pose = wrist_turn(est, p, proto)[1]
     drive = drive_for(p)
     tip = drive.fingertip_clearance(proto)
     clears_top = est.height + proto.palm_clearance <= drive.finger_length + tip
-    fits = est.radius < p.layout.palm_radius
+    reach = {"none": est.radius, "across": 0.5 * est.length, "straddle": 0.0}[pose]
+    fits = reach < open_radius(p)
     return "fingertip" if clears_top and fits else "envelope"
 
 
 def plan_approach(est: ObjectEstimate, p: GripperParams, proto) -> ApproachPlan:
     """The plan of the module docstring for the estimate ``est``."""
-    grasp = choose_grasp(est, p, proto)
+    yaw, pose = wrist_turn(est, p, proto)
+    grasp = choose_grasp(est, p, proto, pose)
     drive = drive_for(p)
     travel = p.lift.xy_travel
     x, y = (est.x, est.y) if proto.centre else (0.0, 0.0)
@@ -95,7 +151,7 @@ def plan_approach(est: ObjectEstimate, p: GripperParams, proto) -> ApproachPlan:
     else:
         z = est.support_z + max(drive.finger_length + proto.tip_clearance, est.height + proto.palm_clearance)
     return ApproachPlan(grasp=grasp, x=x, y=y, palm_z=float(z), support_z=est.support_z,
-                        floor_z=est.top_z + proto.palm_clearance)
+                        floor_z=est.top_z + proto.palm_clearance, yaw=yaw, pose=pose)
 
 
 def finger_reach(p: GripperParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

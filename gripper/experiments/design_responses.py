@@ -1,6 +1,6 @@
 """The responses a design study measures on one design (paper 001's outputs, on this finger):
-the bending curve and its figures, the cable tension for a bending angle, the blocked tip force
-and grasp success. Pure functions of the parameters: the study layer
+the bending curve and its figures, the cable tension for a bending angle, the blocked tip force,
+grasp success, the capability envelope's gripping range, the payload and the everyday parts. Pure functions of the parameters: the study layer
 (:mod:`gripper.studies.study`) decides which designs to run.
 
 Example:
@@ -95,6 +95,56 @@ def envelope_response(p: GripperParams, opts: dict, seed: int, protocol: GraspPr
     return out
 
 
+def payload_response(p: GripperParams, opts: dict, seed: int, protocol: GraspProtocol) -> dict[str, float | None]:
+    """The heaviest of ``masses`` [kg] held in ``trials`` grasps (the envelope's rule) of one
+    ``shape`` and ``size`` [m] at ``friction``, as the envelope finds its payload (a lighter mass
+    that fails does not stop the sweep: each mass is a point of its own)."""
+    shape, size = str(opts.get("shape", "box")), float(opts.get("size", 0.06))
+    mu, trials = float(opts.get("friction", 0.6)), int(opts.get("trials", 3))
+    held = []
+    for mass in sorted(float(m) for m in opts.get("masses", [0.2, 0.5, 1.0])):
+        obj = envelope_object(shape, size, mass, mu)
+        recs = [run_trial(obj, seed, i, params=p, protocol=protocol) for i in range(trials)]
+        ok = [bool(r["success"]) for r in recs if r["status"] == "ok"]
+        if point_held(sum(ok) / len(ok) if ok else None):
+            held.append(mass)
+    return {payload_metric(opts): held[-1] if held else None}
+
+
+def payload_metric(opts: dict) -> str:
+    """The payload response's metric name: ``payload_<shape>_<size in mm>mm_kg``."""
+    return f"payload_{opts.get('shape', 'box')}_{float(opts.get('size', 0.06)) * 1e3:g}mm_kg"
+
+
+def parts_response(p: GripperParams, opts: dict, seed: int, protocol: GraspProtocol) -> dict[str, float | None]:
+    """Per everyday part (:mod:`gripper.objects.everyday_parts`, its mesh built in a scratch
+    folder), the fraction of ``trials`` grasps that succeeded (None: none ended)."""
+    import tempfile
+
+    from gripper.objects.everyday_parts import PARTS, everyday_part
+
+    out: dict[str, float | None] = {}
+    with tempfile.TemporaryDirectory(prefix="gripper-parts-") as tmp:
+        for name in opts.get("parts", list(PARTS)):
+            obj = everyday_part(name, tmp)
+            recs = [run_trial(obj, seed, i, params=p, protocol=protocol) for i in range(int(opts.get("trials", 5)))]
+            ok = [bool(r["success"]) for r in recs if r["status"] == "ok"]
+            out[f"part_{name}_success_rate"] = sum(ok) / len(ok) if ok else None
+    return out
+
+
+def envelope_range(metrics: dict[str, float | None], shapes) -> float | None:
+    """The envelope's total range [m]: per shape, its largest width held less its smallest,
+    summed (None when a shape holds nothing: no range to compare)."""
+    total = 0.0
+    for shape in shapes:
+        lo, hi = metrics.get(f"envelope_{shape}_smallest_m"), metrics.get(f"envelope_{shape}_largest_m")
+        if lo is None or hi is None:
+            return None
+        total += hi - lo
+    return total
+
+
 def measure_responses(p: GripperParams, responses: dict, seed: int = 0, *, protocol: GraspProtocol | None = None,
                       placement: dict | None = None) -> tuple[dict[str, float | None], dict]:
     """(metrics, curves) of design ``p`` for the study file's ``[responses]`` table; grasp
@@ -144,6 +194,11 @@ def measure_responses(p: GripperParams, responses: dict, seed: int = 0, *, proto
             met[f"grasp_{o}_median_peak_force_N"] = float(np.median([r["peak_total_force_N"] for r in recs]))
     if "envelope" in resp:
         met.update(envelope_response(p, resp["envelope"], seed, proto))
+        met["envelope_range_m"] = envelope_range(met, resp["envelope"].get("shapes", list(SHAPES)))
+    if "payload" in resp:
+        met.update(payload_response(p, resp["payload"], seed, proto))
+    if "parts" in resp:
+        met.update(parts_response(p, resp["parts"], seed, proto))
     if "holding_force" in resp:
         h = resp["holding_force"]
         for spec in h.get("objects", ["block"]):

@@ -31,6 +31,9 @@ POLICIES = ("controller", "per_object")
 APPROACHES = ("sensed", "catalogue")
 # Which grasp: chosen from the depth estimate, or forced (gripper.experiments.approach).
 GRASP_CHOICES = ("auto", "envelope", "fingertip")
+# How the wrist turns the palm (gripper.experiments.approach): to the sensed footprint, or not at all
+# (the palm at zero yaw, as in 0.20.0 and before).
+WRIST_RULES = ("footprint", "fixed")
 # The controller's default grip set-point [N of cable tension per finger] (docs/controller.md:
 # chosen on seed 0, verified on seed 1).
 GRIP_TENSION = 5.0
@@ -67,6 +70,12 @@ class GraspProtocol(Validated):
     grasp: str = param("auto", "-", choices=GRASP_CHOICES,
                        source="auto: the fingertip grasp where the tips reach the support beside the "
                        "object, else the envelope (gripper.experiments.approach)")
+    wrist: str = param("footprint", "-", choices=WRIST_RULES,
+                       source="footprint: the wrist turns a finger pair across the sensed footprint's width, "
+                       "or straddles a part longer than the opening (gripper.experiments.approach); fixed: "
+                       "no turn (0.20.0's grasp)")
+    wrist_speed: float = param(1.5, "rad/s", ge=0.01, le=20,
+                               source="assumed: a small rotary stage, a quarter turn in about a second")
     fingertip_clearance: float = param(0.0, "m", ge=0, le=0.05,
                                        source="fingertip grasp: the fingers' lowest point above the sensed support; "
                                        "0, the tips run on it (2 mm lost 5 of 16 zipper bags, docs/controller.md)")

@@ -34,6 +34,8 @@ REQUIRED_OUTCOME_FIELDS = ("lift_height_m", "slip_m", "max_slip_m", "damaged", "
 OUTCOME_FIELDS = (*REQUIRED_OUTCOME_FIELDS, "close_command_rad", "policy", "servo_at_grasp", "servo_at_hold_end")
 # Added in gripper 0.12.0 (optional): the grasp made, where the palm went, the camera's estimate.
 APPROACH_FIELDS = ("grasp", "palm_xy_m", "depth_estimate")
+# Added in gripper 0.21.0 (optional): the wrist's turn and how the fingers met the footprint.
+WRIST_FIELDS = ("wrist_yaw_rad", "pose")
 # Set only by the grasp controller (policy "controller").
 CONTROLLER_FIELDS = ("grip_tension_N", "contact_time_s", "grasp_time_s")
 # Added in gripper 0.15.0 (optional): the pneumatic gripper's set-point and peak chamber pressure,
@@ -80,6 +82,8 @@ class TrialRecord(Mapping[str, Any]):
             ``pressure_Pa``).
         grasp: ``envelope`` or ``fingertip`` (gripper.experiments.approach).
         palm_xy_m: where the approach put the palm over the table [m].
+        wrist_yaw_rad: the wrist's turn [rad]; pose: ``none``, ``across`` or ``straddle``
+            (gripper.experiments.approach).
         depth_estimate: the palm camera's estimate (:class:`gripper.sim.depth.ObjectEstimate`
             as a dict; None under the catalogue approach).
         grip_tension_N: the controller's set-point [N] (controller only).
@@ -127,6 +131,8 @@ class TrialRecord(Mapping[str, Any]):
     grasp: str | None = None
     palm_xy_m: list[float] | None = None
     depth_estimate: dict[str, float] | None = None
+    wrist_yaw_rad: float | None = None
+    pose: str | None = None
     grip_tension_N: float | None = None
     contact_time_s: float | None = None
     grasp_time_s: float | None = None
@@ -143,9 +149,10 @@ class TrialRecord(Mapping[str, Any]):
         out = {}
         for f in dataclasses.fields(self):
             v = getattr(self, f.name)
-            if f.name in (*OUTCOME_FIELDS, *APPROACH_FIELDS) and self.status != "ok":
+            if f.name in (*OUTCOME_FIELDS, *APPROACH_FIELDS, *WRIST_FIELDS) and self.status != "ok":
                 continue
-            if f.name in ("error", "run_config_hash", *CONTROLLER_FIELDS, *APPROACH_FIELDS, *PNEUMATIC_FIELDS,
+            if f.name in ("error", "run_config_hash", *CONTROLLER_FIELDS, *APPROACH_FIELDS, *WRIST_FIELDS,
+                          *PNEUMATIC_FIELDS,
                           "close_command_rad") and v is None:
                 continue
             out[f.name] = v

@@ -36,6 +36,7 @@ from gripper.drives.cable.sensing import ServoSensing
 from gripper.experiments.approach import ApproachPlan, fingertip_palm_z, plan_approach
 from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
 from gripper.experiments.record import TrialRecord
+from gripper.model.builders import WRIST
 from gripper.objects.grasp_object import GraspObject
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement
@@ -175,10 +176,14 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
         servo_cmd = grip.goals
     close_cmd = min(obj.close_command * proto.close_command_scale, travel)
     lift_y = m.actuator("lift_y").id
+    wrist = m.actuator(WRIST).id if p.lift.yaw_enabled else None
+    turn = [0.0]  # the wrist's goal once the plan has it [rad]
 
-    def ctrl(servo, z, x=None, y=None):
+    def ctrl(servo, z, x=None, y=None, yaw=None):
         def fn(t):
             u = np.zeros((len(t), m.nu))
+            if wrist is not None:
+                u[:, wrist] = turn[0] if yaw is None else yaw(t)
             s = np.asarray(servo(t) if callable(servo) else servo, dtype=float)
             u[:, probe.servo] = s[:, None] if s.ndim == 1 else s  # one goal for all, or one per finger
             u[:, probe.lift_z] = z(t) if callable(z) else z
@@ -204,13 +209,16 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
     z_grasp = plan.palm_z - home  # lift_z set-point [m]
     t_app = abs(z_grasp) / proto.approach_speed
     t_lat = max(math.hypot(plan.x, plan.y) / proto.approach_speed, 1e-9)
+    t_turn = max(abs(plan.yaw) / proto.wrist_speed, 1e-9)
 
     def lateral(target):
         return lambda t: target * np.minimum(1.0, t / t_lat)
 
     run_phase(stepper, probe, rec, ctrl(0.0, lambda t: z_grasp * np.minimum(1.0, t / t_app),
-                                        lateral(plan.x), lateral(plan.y)),
-              max(t_app, t_lat), ch, "approach")
+                                        lateral(plan.x), lateral(plan.y),
+                                        lambda t: plan.yaw * np.minimum(1.0, t / t_turn)),
+              max(t_app, t_lat, t_turn), ch, "approach")
+    turn[0] = plan.yaw
     xc, yc = plan.x, plan.y
     sensed: dict[str, dict] = {}
     z_close: Any = z_grasp
@@ -304,7 +312,7 @@ def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
         "damage_limit": obj.damage_limit,
         "close_command_rad": close_cmd if grip is None else drive.close_command(grip),
         "policy": proto.policy, "servo_at_grasp": sensed["grasp"], "servo_at_hold_end": sensed["hold"],
-        "grasp": plan.grasp, "palm_xy_m": [xc, yc],
+        "grasp": plan.grasp, "palm_xy_m": [xc, yc], "wrist_yaw_rad": plan.yaw, "pose": plan.pose,
         "depth_estimate": estimate.to_dict() if estimate is not None else None,
     }
     if grip is not None:

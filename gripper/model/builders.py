@@ -6,8 +6,9 @@ Structure of the cable gripper's model (names use ``f{k}_`` for finger k, elemen
 paper 000, B1 = ``seg1`` fixed to the palm; hinge ``hinge{j}`` joins ``seg{j-1}`` and ``seg{j}``
 and carries spring M_j):
 
-- ``palm`` on slide joints ``lift_x``, ``lift_y`` (optional) and ``lift_z``, each driven by a
-  position actuator of the same name;
+- ``palm`` on slide joints ``lift_x``, ``lift_y`` (optional) and ``lift_z`` and the wrist's
+  hinge ``wrist_yaw`` about its axis (optional), each driven by a position actuator of the same
+  name;
 - per finger, a ``mount`` frame (finger frame, see :mod:`gripper.drives.cable.geometry`), the element chain,
   a ``reel`` body on a slide joint: the cable pulled onto the spool;
 - per finger, a spatial tendon ``f{k}_cable`` from the reel through a site at each hole mouth to
@@ -23,8 +24,8 @@ Example:
     >>> import mujoco
     >>> from gripper import GripperParams, build_gripper_spec
     >>> model = build_gripper_spec(GripperParams()).compile()
-    >>> model.nu    # 4 servos + 3 lift axes
-    7
+    >>> model.nu    # 4 servos + 3 lift axes + the wrist
+    8
 """
 
 from __future__ import annotations
@@ -40,6 +41,12 @@ from gripper.objects.library import get_object
 from gripper.parts.defaults import add_defaults, set_options
 from gripper.parts.names import FingerNames
 from gripper.parts.pads import PadMaker, add_pad_meshes
+
+# The wrist: a rotary axis about the palm's axis (``lift.yaw_enabled``), its travel either side
+# [rad]. A four-finger palm needs at most 45° to put a finger pair across any footprint; a
+# quarter turn serves three fingers and more (assumed: a rotary stage's usual range).
+WRIST = "wrist_yaw"
+WRIST_TRAVEL = math.pi / 2
 
 
 def add_fingers(spec: mujoco.MjSpec, parent: mujoco.MjsBody, drive: Drive, defaults: dict) -> list[FingerNames]:
@@ -107,6 +114,10 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
         palm.add_joint(name=name, type=mujoco.mjtJoint.mjJNT_SLIDE, axis=axis,
                        range=[-travel, travel], limited=mujoco.mjtLimited.mjLIMITED_TRUE,
                        armature=0.0, damping=0.0)
+    if lift.yaw_enabled:
+        palm.add_joint(name=WRIST, type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1],
+                       range=[-WRIST_TRAVEL, WRIST_TRAVEL], limited=mujoco.mjtLimited.mjLIMITED_TRUE,
+                       armature=0.0, damping=0.0)
     radius = p.layout.palm_radius + drive.finger_height + 0.004
     palm.add_geom(defaults["visual"], name="palm_visual", type=mujoco.mjtGeom.mjGEOM_CYLINDER,
                   size=[radius, 0.5 * p.layout.palm_thickness, 0],
@@ -131,6 +142,8 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
         act.forcerange = [-lift.max_force, lift.max_force]
         spec.add_sensor(name=f"{name}_pos", type=mujoco.mjtSensor.mjSENS_JOINTPOS,
                         objname=name, objtype=mujoco.mjtObj.mjOBJ_JOINT)
+    if lift.yaw_enabled:
+        add_wrist_actuator(spec, p, radius)
     spec.add_sensor(name="palm_pos", type=mujoco.mjtSensor.mjSENS_FRAMEPOS, objname="palm_center",
                     objtype=mujoco.mjtObj.mjOBJ_SITE)
     drive.tune(spec)
@@ -141,6 +154,22 @@ def build_gripper_spec(p: GripperParams) -> mujoco.MjSpec:
         # (gripper.sim.scene).
         spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
     return spec
+
+
+def add_wrist_actuator(spec: mujoco.MjSpec, p: GripperParams, palm_radius: float) -> None:
+    """The wrist's position actuator and its angle sensor: gain ``lift.yaw_stiffness``, damped
+    at the linear axes' ratio on the palm disc's inertia about its axis (m r² / 2; the fingers
+    add to it, so the wrist is somewhat less damped than stated)."""
+    lift = p.lift
+    inertia = 0.5 * p.layout.palm_mass * palm_radius ** 2
+    act = spec.add_actuator(name=WRIST, target=WRIST, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+    act.set_to_position(kp=lift.yaw_stiffness, kv=2.0 * lift.damping_ratio * math.sqrt(lift.yaw_stiffness * inertia))
+    act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
+    act.ctrlrange = [-WRIST_TRAVEL, WRIST_TRAVEL]
+    act.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
+    act.forcerange = [-lift.yaw_max_torque, lift.yaw_max_torque]
+    spec.add_sensor(name=f"{WRIST}_pos", type=mujoco.mjtSensor.mjSENS_JOINTPOS, objname=WRIST,
+                    objtype=mujoco.mjtObj.mjOBJ_JOINT)
 
 
 def build_scene_spec(p: GripperParams, *, with_object: bool = True) -> mujoco.MjSpec:

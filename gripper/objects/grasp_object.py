@@ -2,9 +2,9 @@
 deformable kinds, material and mesh (SI units), validated once.
 
 Every object is sized to the default gripper's aperture: with straight fingers the grasping
-faces stand 40 mm from the palm axis (palm radius), and trials offset the object by up to
-±10 mm, so every object's horizontal half-extent (its half-diagonal where yaw is sampled) stays
-at or below 28 mm, unless it is marked oversize.
+faces stand the palm radius from the palm axis, and an object's horizontal half-extent (its
+half-diagonal where yaw is sampled) must fit inside, unless it is marked oversize or is a long
+part whose half-width the wrist can straddle (:data:`STRADDLE_HALF_WIDTH`).
 
 Example:
     >>> from gripper.objects.library import get_object
@@ -19,6 +19,7 @@ import math
 from dataclasses import dataclass
 
 from gripper.core.fields import Validated, check_safe_name
+from gripper.core.params import FingerGeometry, GripperLayout
 from gripper.core.ranges import (
     CLOSE_COMMAND,
     DAMAGE_LIMIT,
@@ -55,9 +56,15 @@ KINDS = (*RIGID_KINDS, "balloon", "paper_box", "bag", "zipper_bag")
 DEFAULT_MESH_POINTS = {"balloon": (5, 5, 5), "paper_box": (5, 5, 6), "bag": (4, 4, 5), "zipper_bag": (6, 4, 3)}
 # Allowed resolutions: flexcomp needs 3 points an axis for a closed surface; 12 is a 10-fold cost.
 MESH_POINTS_RANGE = (3, 12)
-# The open fingers' grasping faces stand this far from the palm axis in the default design
-# (layout.palm_radius): an object's horizontal footprint must fit inside [m].
-APERTURE_RADIUS = 0.040
+# The open fingers' grasping faces stand this far from the palm axis at their tips in the default
+# design (gripper.experiments.approach.open_radius: the palm radius plus the splay of the fingers'
+# length): an object's horizontal footprint must fit inside [m], or be straddled.
+APERTURE_RADIUS = GripperLayout().palm_radius + FingerGeometry().length * math.sin(
+    math.radians(GripperLayout().mount_tilt_deg))
+# A longer part is straddled (gripper.experiments.approach): its long axis between two
+# neighbouring fingers of the default design, so its half-width must stay this far inside their
+# nearest corners, R sin 45° - (w/2) cos 45°, less the approach's 3 mm margin [m].
+STRADDLE_HALF_WIDTH = (APERTURE_RADIUS - 0.5 * FingerGeometry().width) * math.sqrt(0.5) - 0.003
 
 
 # A zipper bag's contents lie in one layer on the bag's floor, in a grid, this far from the film
@@ -202,12 +209,15 @@ class GraspObject(Validated):
             raise ValueError(f"{where}.contents: only a zipper_bag holds loose contents, this is a {self.kind}")
         if self.kind == "rigid_sphere" and not (self.size[0] == self.size[1] == self.size[2]):
             raise ValueError(f"{where}.size: a sphere's three half-extents are its radius, got {list(self.size)}")
-        if self.half_width > APERTURE_RADIUS and not self.oversize:
+        straddled = min(self.size[0], self.size[1]) <= STRADDLE_HALF_WIDTH
+        if self.half_width > APERTURE_RADIUS and not self.oversize and not straddled:
             what = "hull footprint radius" if self.kind == "mesh" and self.footprint_radius > 0 else \
                 "horizontal half-extent"
-            raise ValueError(f"{where}.size: its {what} is {self.half_width:.3f} m over all yaws; the open "
-                             f"fingers of the default design leave {APERTURE_RADIUS:.3f} m: scale the object "
-                             "down (a round part: declare it yaw_symmetric, so its radius counts)")
+            raise ValueError(f"{where}.size: its {what} is {self.half_width:.3f} m over all yaws and its half-width "
+                             f"{min(self.size[0], self.size[1]):.3f} m; the open fingers of the default design "
+                             f"leave {APERTURE_RADIUS:.3f} m, or straddle a part up to {STRADDLE_HALF_WIDTH:.4f} m "
+                             "half-wide: scale the object down (a round part: declare it yaw_symmetric, so its "
+                             "radius counts)")
         return self
 
     def to_dict(self) -> dict:

@@ -50,6 +50,10 @@ RESPONSES: dict[str, dict[str, type]] = {
     # the capability envelope on one grid (gripper.objects.envelope_objects): per shape, the
     # smallest and largest width held (at HELD_FRACTION of its trials)
     "envelope": {"shapes": list, "sizes": list, "mass": float, "friction": float, "trials": int},
+    # the heaviest mass held of one shape and width (the envelope's payload, at one point)
+    "payload": {"shape": str, "size": float, "masses": list, "friction": float, "trials": int},
+    # success on the everyday parts built as meshes (gripper.objects.everyday_parts)
+    "parts": {"parts": list, "trials": int},
     "inflation": {"pressure_max": float, "steps": int, "refinement": int},
 }
 # upper bounds of response options: the actuator model's pressure range (PneumaticActuator.pressure_max's
@@ -58,11 +62,13 @@ RESPONSE_LIMITS: dict[str, dict[str, float]] = {"inflation": {"pressure_max": 1e
                    # trials per object (per width, for the envelope) and a bending run's length [s]
                    # (ten minutes of simulated time, the command line's MAX_SIMULATED_S)
                    "grasp": {"trials": 1000}, "holding_force": {"trials": 1000}, "envelope": {"trials": 100},
+                   "payload": {"trials": 100}, "parts": {"trials": 1000},
                    "bending": {"duration": 600.0}}
 # Design points in one study: a factorial of 13 parameters at two levels; a study's trials in all
 # (points × each point's trials) at most TRIALS_MAX, a day of trials on one core.
 POINTS_MAX = 10_000
-MODEL_RESPONSES = {"gripper": ("bending", "tension_for_angle", "blocked_force", "grasp", "holding_force", "envelope"),
+MODEL_RESPONSES = {"gripper": ("bending", "tension_for_angle", "blocked_force", "grasp", "holding_force", "envelope",
+                               "payload", "parts"),
                    "actuator": ("inflation",)}
 
 
@@ -84,6 +90,9 @@ class ActuatorDesign:
         return self
 # Parameters whose change alters the finger's bending and so would void a calibration.
 CALIBRATION_SECTIONS = ("finger.", "material.", "springs.")
+# Finger fields that move no spring (the calibration's design hash leaves them out too,
+# gripper.calibration.calfile.design_hash): the tip element lies past the last hinge.
+SPRING_NEUTRAL = ("finger.tip_taper",)
 BRIDGE_RULE = "hinge stiffness scaled by the bridge-beam rule k ∝ E·w·t³ (not fitted)"
 
 
@@ -232,6 +241,7 @@ def apply_point(base, changes: dict) -> tuple:
         p = _replace_dotted(p, key, value)
     if isinstance(base, ActuatorDesign):
         return p.validate(), []
+    changes = {k: v for k, v in changes.items() if k not in SPRING_NEUTRAL}
     if "finger.n_segments" in changes and "finger.pitch" not in changes:
         length = base.finger.pitch * base.finger.n_segments
         p = p.replace(finger=dataclasses.replace(p.finger, pitch=length / p.finger.n_segments))
@@ -431,7 +441,17 @@ def load_study(path: str | Path) -> Study:
                 raise err("responses." + name, f"{k} must be an integer >= 1, got {v!r}")
             if name in RESPONSE_LIMITS and k in RESPONSE_LIMITS[name] and v > RESPONSE_LIMITS[name][k]:
                 raise err("responses." + name, f"{k} must be at most {RESPONSE_LIMITS[name][k]:g}, got {v!r}")
-            if typ is list and name == "envelope":
+            if typ is str and v not in SHAPES:
+                raise err("responses." + name, f"{k} must be one of {', '.join(SHAPES)}, got {v!r}")
+            if typ is list and name == "parts":
+                from gripper.objects.everyday_parts import PARTS
+                if not (isinstance(v, list) and v and all(isinstance(x, str) and x in PARTS for x in v)):
+                    raise err("responses." + name, f"{k} must be a non-empty list of {', '.join(PARTS)}, got {v!r}")
+            elif typ is list and name == "payload":
+                if not (isinstance(v, list) and v and all(isinstance(x, int | float) and not isinstance(x, bool)
+                                                          and x > 0 for x in v)):
+                    raise err("responses." + name, f"{k} must be a non-empty list of masses > 0 kg, got {v!r}")
+            elif typ is list and name == "envelope":
                 ok = isinstance(v, list) and bool(v) and (
                     all(s in SHAPES for s in v) if k == "shapes" else
                     all(isinstance(x, int | float) and not isinstance(x, bool) and 0 < x <= 0.3 for x in v))
@@ -456,6 +476,15 @@ def load_study(path: str | Path) -> Study:
                                   [opts.get("mass", 0.05)], [opts.get("friction", 0.6)])
         except ValueError as e:
             raise err("responses.envelope", str(e)) from None
+    if "payload" in responses:
+        from gripper.objects.envelope_objects import check_envelope_points
+
+        opts = responses["payload"]
+        try:
+            check_envelope_points([opts.get("shape", "box")], [opts.get("size", 0.06)],
+                                  opts.get("masses", [0.2, 0.5, 1.0]), [opts.get("friction", 0.6)])
+        except ValueError as e:
+            raise err("responses.payload", str(e)) from None
     objective = None
     obj = dict(data.get("objective", {}))
     limits: dict = {}
@@ -524,6 +553,14 @@ def _trials_per_point(responses: dict) -> int:
     if "envelope" in responses:
         opts = responses["envelope"]
         n += len(opts.get("shapes", SHAPES)) * len(opts.get("sizes", [0] * 8)) * opts.get("trials", 3)
+    if "payload" in responses:
+        opts = responses["payload"]
+        n += len(opts.get("masses", [0] * 3)) * opts.get("trials", 3)
+    if "parts" in responses:
+        from gripper.objects.everyday_parts import PARTS
+
+        opts = responses["parts"]
+        n += len(opts.get("parts", PARTS)) * opts.get("trials", 5)
     return max(n, 1)
 
 
@@ -570,6 +607,15 @@ def metric_names(responses: dict) -> list[str]:
     if "envelope" in responses:
         for shape in responses["envelope"].get("shapes", list(SHAPES)):
             names += [f"envelope_{shape}_smallest_m", f"envelope_{shape}_largest_m"]
+        names += ["envelope_range_m"]
+    if "payload" in responses:
+        from gripper.experiments.design_responses import payload_metric
+
+        names += [payload_metric(responses["payload"])]
+    if "parts" in responses:
+        from gripper.objects.everyday_parts import PARTS
+
+        names += [f"part_{name}_success_rate" for name in responses["parts"].get("parts", list(PARTS))]
     if "holding_force" in responses:
         from gripper.objects.library import get_object
 

@@ -30,7 +30,14 @@ from gripper.drives.cable.finger import (
     add_servo_default,
     tune_soft_limits,
 )
-from gripper.drives.cable.geometry import ElementKind, element_kind, element_profile, element_vertices
+from gripper.drives.cable.geometry import (
+    ElementKind,
+    element_face,
+    element_kind,
+    element_profile,
+    element_taper,
+    element_vertices,
+)
 from gripper.drives.cable.sensing import ServoReading, ServoSensing, ServoSensor
 from gripper.drives.cable.servo import servo_gains
 from gripper.drives.drive import Drive
@@ -57,7 +64,8 @@ class CableDrive(Drive):
     set_point_field = "grip_tension"
     set_point_record = "grip_tension_N"
     effort_label = "cable tension [N]"
-    responses = ("bending", "tension_for_angle", "blocked_force", "grasp", "holding_force", "envelope")
+    responses = ("bending", "tension_for_angle", "blocked_force", "grasp", "holding_force", "envelope", "payload",
+                 "parts")
     state_observations = (("cable_shortening", "m"), ("cable_tension", "N"), ("servo_angle", "rad"),
                           ("servo_setpoint", "rad"))
     sensed_observations = (("sensed_servo_position", "rad"), ("sensed_servo_current", "A"),
@@ -93,6 +101,10 @@ class CableDrive(Drive):
     @property
     def finger_height(self) -> float:
         return self.params.finger.height
+
+    @property
+    def finger_width(self) -> float:
+        return self.params.finger.width
 
     def names(self, k: int) -> FingerNames:
         return FingerNames(finger_name(k), self.n_segments)
@@ -132,7 +144,7 @@ class CableDrive(Drive):
         return tuple(sorted({element_kind(i, n) for i in range(n)}))
 
     def pad_vertices(self, kind: str) -> np.ndarray:
-        return cable_pad_vertices(self.params, element_profile(self.params.finger, _element_kind(kind)))
+        return cable_pad_vertices(self.params, _element_kind(kind))
 
     def element_vertices(self, j: int) -> np.ndarray:
         return element_vertices(self.params.finger, element_kind(j - 1, self.n_segments))
@@ -142,10 +154,8 @@ class CableDrive(Drive):
 
     def face_area(self, j: int) -> float:
         """The top between the element's cuts, as :func:`gripper.drives.cable.finger.add_finger` pads it."""
-        g = self.params.finger
-        prof = element_profile(g, element_kind(j - 1, self.n_segments))
-        top = prof[np.isclose(prof[:, 1], g.height), 0]
-        return float(top.max() - top.min()) * g.width
+        x0, x1, width = element_face(self.params.finger, element_kind(j - 1, self.n_segments))
+        return (x1 - x0) * width
 
     def sensor(self, m, rng=None, sensing=None) -> ServoSensor:
         return ServoSensor(m, self.params, sensing if sensing is not None else ServoSensing(), rng)
@@ -211,14 +221,17 @@ class CableDrive(Drive):
         return [reading.position, reading.current, reading.tension]
 
 
-def cable_pad_vertices(p: GripperParams, profile: np.ndarray) -> np.ndarray:
-    """A cable element's collision surface: its prism, every edge rounded to ``contact.edge_radius``.
+def cable_pad_vertices(p: GripperParams, kind: ElementKind) -> np.ndarray:
+    """A cable element's collision surface: its prism (the tip's tapered), every edge rounded to
+    ``contact.edge_radius``.
 
     Raises:
         ValueError: naming ``contact.edge_radius``, when the rounding does not fit the element.
     """
+    g = p.finger
     try:
-        return hull_vertices(rounded_prism(profile, p.finger.width, p.contact.edge_radius))
+        return hull_vertices(rounded_prism(element_profile(g, kind), g.width, p.contact.edge_radius,
+                                           taper=element_taper(g, kind)))
     except ValueError as err:
         raise ValueError(f"contact.edge_radius: {p.contact.edge_radius!r} m does not fit this finger's "
                          f"elements ({err})") from None

@@ -21,8 +21,8 @@ from gripper.drives.cable.closure import teeth_lock_angle, tune_closure_limits
 from gripper.drives.cable.geometry import (
     cable_line_z,
     cable_via_points,
+    element_face,
     element_kind,
-    element_profile,
     element_vertices,
 )
 from gripper.drives.cable.servo import add_servo, set_dcmotor
@@ -135,14 +135,12 @@ def add_finger(spec: mujoco.MjSpec, parent: mujoco.MjsBody, p: GripperParams, pr
                      type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}", material="silicone")
         collision = seg.add_geom(defaults["collision"], name=names.collision(j),
                                  type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"element_{kind}")
-        prof = element_profile(g, kind)
-        top = prof[np.isclose(prof[:, 1], g.height), 0]
-        x0, x1 = float(top.min()), float(top.max())
+        x0, x1, face_width = element_face(g, kind)
         host = seg if pad is None else pad(seg, j, kind, collision, element_vertices(g, kind),
-                                           (x1 - x0) * g.width)
+                                           (x1 - x0) * face_width)
         host.add_site(defaults["pad"], name=names.pad(j),
                      pos=[0.5 * (x0 + x1), 0, g.height],
-                     size=[0.5 * (x1 - x0), 0.5 * g.width, PAD_HALF_THICKNESS])
+                     size=[0.5 * (x1 - x0), 0.5 * face_width, PAD_HALF_THICKNESS])
         for role, x in cable_via_points(g, p.cable, kind):
             name = names.tip_anchor if role == "anchor" else names.cable_site(j)
             seg.add_site(name=name, pos=[x, 0, zc], size=[0.0008] * 3)

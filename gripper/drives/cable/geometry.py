@@ -21,6 +21,7 @@ from typing import Literal
 import numpy as np
 
 from gripper.core.params import Cable, FingerGeometry
+from gripper.core.rounding import rounded_prism
 
 ElementKind = Literal["base", "middle", "tip"]
 
@@ -48,13 +49,25 @@ def element_profile(g: FingerGeometry, kind: ElementKind) -> np.ndarray:
     return np.asarray(pts)
 
 
+def element_taper(g: FingerGeometry, kind: ElementKind) -> float:
+    """The element's distal width over its proximal width: ``g.tip_taper`` for the tip, else 1."""
+    return g.tip_taper if kind == "tip" else 1.0
+
+
 def element_vertices(g: FingerGeometry, kind: ElementKind) -> np.ndarray:
-    """Vertices of the element prism, shape (2k, 3) [m]: the profile extruded over the width."""
+    """Vertices of the element prism, shape (2k, 3) [m]: the profile extruded over the width
+    (the tip's narrowing linearly to ``g.tip_width`` at its distal end)."""
+    return rounded_prism(element_profile(g, kind), g.width, 0.0, taper=element_taper(g, kind))
+
+
+def element_face(g: FingerGeometry, kind: ElementKind) -> tuple[float, float, float]:
+    """The grasping face between the element's cuts: its ends x0, x1 [m] and its mean width [m]
+    (the tip's narrows)."""
     prof = element_profile(g, kind)
-    half = 0.5 * g.width
-    top = np.column_stack([prof[:, 0], np.full(len(prof), +half), prof[:, 1]])
-    bot = np.column_stack([prof[:, 0], np.full(len(prof), -half), prof[:, 1]])
-    return np.vstack([top, bot])
+    top = prof[np.isclose(prof[:, 1], g.height), 0]
+    x0, x1 = float(top.min()), float(top.max())
+    mid = 0.5 * (x0 + x1) / g.pitch
+    return x0, x1, g.width * (1.0 + (element_taper(g, kind) - 1.0) * mid)
 
 
 def cable_line_z(g: FingerGeometry, cable: Cable) -> float:

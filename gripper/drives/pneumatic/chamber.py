@@ -32,8 +32,8 @@ Example:
     >>> from gripper.core.params import GripperParams
     >>> from gripper.model.builders import build_gripper_spec
     >>> p = GripperParams().replace(actuation=GripperParams().actuation.replace(kind="pneumatic"))
-    >>> build_gripper_spec(p).compile().nu    # 4 chambers + 3 lift axes
-    7
+    >>> build_gripper_spec(p).compile().nu    # 4 chambers + 3 lift axes + the wrist
+    8
 """
 
 from __future__ import annotations

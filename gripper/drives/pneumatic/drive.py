@@ -80,6 +80,10 @@ class PneumaticDrive(Drive):
     def finger_height(self) -> float:
         return self.params.pneumatic.height
 
+    @property
+    def finger_width(self) -> float:
+        return self.params.pneumatic.width
+
     def names(self, k: int) -> FingerNames:
         return FingerNames(finger_name(k), self.n_segments, first_hinge=1, actuator="chamber")
 
