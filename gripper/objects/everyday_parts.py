@@ -80,9 +80,8 @@ def part_mesh(spec: PartSpec):
                                 0.5 * tip * np.sin(np.arange(8) * math.pi / 4)])
         pts = [np.column_stack([np.full(6, x), hexagon]) for x in (0.0, barrel)]
         pts.append(ring + np.array([barrel + cone, 0.0, 0.0]))
-        # a flat of the hexagon down, so the pen lies on it
+        # corners at 0°, 60°, ... from +y: the edge from 60° to 120° is a flat, so the pen lies on one
         mesh = trimesh.convex.convex_hull(np.vstack(pts))
-        mesh.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 6, [1, 0, 0]))
     else:
         raise ValueError(f"part shape: {spec.shape!r} is not one of rounded_cube, lying_cylinder, pen")
     mesh.apply_translation(-mesh.bounds.mean(axis=0))
