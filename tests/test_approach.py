@@ -8,7 +8,7 @@ import pytest
 
 import gripper.experiments.trial as trial_module
 from gripper.core.params import GripperParams
-from gripper.experiments.approach import choose_grasp, finger_reach
+from gripper.experiments.approach import choose_grasp, finger_reach, open_radius
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.trial import run_trial
 from gripper.objects.grasp_object import GraspObject
@@ -25,7 +25,8 @@ def _box(w, h, mass=0.08, name="box"):
 
 
 def _estimate(height, radius):
-    return ObjectEstimate(support_z=0.0, top_z=height, x=0.0, y=0.0, length=radius, width=radius, yaw=0.0,
+    """A disc's footprint: its rectangle 2r across both ways."""
+    return ObjectEstimate(support_z=0.0, top_z=height, x=0.0, y=0.0, length=2 * radius, width=2 * radius, yaw=0.0,
                           radius=radius, pixels=100)
 
 
@@ -35,8 +36,10 @@ def test_the_grasp_rule_is_geometry():
     assert choose_grasp(_estimate(0.044, 0.025), P, proto) == "fingertip"
     # taller than the straight fingers (less the palm's clearance): the envelope from above
     assert choose_grasp(_estimate(P.finger.length, 0.025), P, proto) == "envelope"
-    # wider than the open fingers' grasping faces: the tips would land on it
-    assert choose_grasp(_estimate(0.044, P.layout.palm_radius + 0.001), P, proto) == "envelope"
+    # wider than the open fingers' grasping faces at their tips: the tips would land on it
+    inside = open_radius(P) - proto.fingertip_margin
+    assert choose_grasp(_estimate(0.044, inside + 0.001), P, proto) == "envelope"
+    assert choose_grasp(_estimate(0.044, inside - 0.001), P, proto) == "fingertip"
     assert choose_grasp(_estimate(0.044, 0.025), P, proto.replace(grasp="envelope")) == "envelope"
 
 

@@ -50,6 +50,7 @@ class KnuckleDrive(Drive):
     n_segments = 2
     finger_length = 2 * LINK[0]
     finger_height = LINK[2]
+    finger_width = LINK[1]
 
     def names(self, k: int) -> FingerNames:
         return FingerNames(finger_name(k), 2, first_hinge=2, actuator="motor")
@@ -146,7 +147,7 @@ def test_a_third_drive_builds_a_gripper(knuckle):
 
     assert isinstance(drive_for(knuckle), KnuckleDrive)
     m = build_gripper_spec(knuckle).compile()
-    assert m.nu == 4 + 3  # a knuckle per finger and the lift stage
+    assert m.nu == 4 + 3 + 1  # a knuckle per finger, the lift stage and the wrist
     assert [m.actuator(k).name for k in range(4)] == [f"f{k}_motor" for k in range(4)]
     # the shared parts: the pads (their slide joints and springs) and the lift
     assert sum(m.joint(j).name.endswith("_padslide") for j in range(m.njnt)) == 8

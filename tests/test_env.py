@@ -13,7 +13,7 @@ from gymnasium.utils.env_checker import check_env
 import gripper  # noqa: F401  (registers the environment)
 from gripper.envs.grasp_env import SoftGripperGraspEnv
 
-ENV_ID = "gripper:SoftGripperGrasp-v10"
+ENV_ID = "gripper:SoftGripperGrasp-v11"
 
 # Warnings check_env may raise, each with its reason:
 ALLOWED_WARNINGS = (

@@ -214,3 +214,39 @@ def test_bad_payload_and_parts_options_are_refused(tmp_path, bad, match):
                  f"[responses]\n{bad}\n")
     with pytest.raises(ValueError, match=match):
         load_study(f)
+
+
+SMALL = """
+[study]
+name = "gripping range, small"
+design = "one_at_a_time"
+seed = 0
+
+[vary]
+"layout.palm_radius" = [0.030]
+"finger.tip_taper" = [0.5]
+
+[responses]
+envelope = { shapes = ["box"], sizes = [0.015, 0.06], trials = 1 }
+payload = { shape = "box", size = 0.06, masses = [0.5], trials = 1 }
+parts = { parts = ["die"], trials = 1 }
+
+[objective]
+maximize = "envelope_range_m"
+"""
+
+
+def test_a_gripping_range_study_gives_the_same_results_at_one_and_two_workers(tmp_path):
+    from helpers import study_records
+
+    from gripper.cli.main import main
+
+    f = tmp_path / "s.toml"
+    f.write_text(SMALL)
+    one, two = tmp_path / "w1", tmp_path / "w2"
+    assert main(["study", str(f), "--out", str(one), "--workers", "1", "--no-progress"]) == 0
+    assert main(["study", str(f), "--out", str(two), "--workers", "2", "--no-progress"]) == 0
+    recs = study_records(one)
+    assert recs == study_records(two) and [r["status"] for r in recs] == ["ok"] * 3
+    names = set(recs[0]["metrics"])
+    assert {"envelope_range_m", "payload_box_60mm_kg", "part_die_success_rate"} <= names

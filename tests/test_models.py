@@ -86,7 +86,7 @@ def test_committed_scene_loads():
     # 4 cables (spatial), one stop tendon (fixed) per hinge (4 fingers x 5 hinges) and the pads'
     # knot springs (one fixed tendon per knot past the first, 24 pads)
     knots = len(pad_spring(drive_for(GripperParams())).knots)
-    assert m.nu == 7 and m.ntendon == 4 + 20 + 24 * (knots - 1)
+    assert m.nu == 8 and m.ntendon == 4 + 20 + 24 * (knots - 1)
     assert sum(m.tendon(i).name.endswith("_cable") for i in range(m.ntendon)) == 4
     names = [m.sensor(i).name for i in range(m.nsensor)]
     assert "f0_cable_tension" in names and "f3_seg6_pad" in names

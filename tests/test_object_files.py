@@ -4,6 +4,7 @@ limits, mesh repair and sizing by the real footprint."""
 from __future__ import annotations
 
 import json
+import math
 import warnings
 
 import numpy as np
@@ -15,7 +16,7 @@ from gripper.core.resources import OBJECTS_DIR
 from gripper.experiments.protocol import GraspProtocol
 from gripper.experiments.trial import run_trial
 from gripper.objects.files import load_object_file
-from gripper.objects.grasp_object import APERTURE_RADIUS
+from gripper.objects.grasp_object import APERTURE_RADIUS, STRADDLE_HALF_WIDTH
 from gripper.objects.library import get_object, mesh_object
 
 SHORT = GraspProtocol(hold_s=0.2, shake_s=0.2)
@@ -122,14 +123,17 @@ def test_a_repairable_mesh_runs_and_a_hopeless_one_is_refused(tmp_path):
 
 
 def test_a_round_mesh_is_sized_by_its_footprint_not_its_bounding_box(tmp_path):
-    r = 0.034  # bounding-box half-diagonal 48 mm > the 40 mm aperture, footprint radius 34 mm
+    r = 0.85 * APERTURE_RADIUS  # its bounding box's half-diagonal 1.2 times the aperture, its footprint inside
     trimesh.creation.cylinder(radius=r, height=0.05, sections=48).export(tmp_path / "round.stl")
     obj = mesh_object(tmp_path / "round.stl")
     assert np.hypot(obj.size[0], obj.size[1]) > APERTURE_RADIUS
     assert obj.half_width == pytest.approx(r, rel=1e-3)
-    _box_stl(tmp_path / "wide.stl", half=(0.035, 0.035, 0.02))
-    with pytest.raises(ValueError, match=r"0\.049 m over all yaws; the open fingers of the default design "
-                                         r"leave 0\.040 m"):
+    half = 0.8 * APERTURE_RADIUS  # a square: its half-diagonal outside, its half-width too wide to straddle
+    assert half > STRADDLE_HALF_WIDTH
+    _box_stl(tmp_path / "wide.stl", half=(half, half, 0.02))
+    with pytest.raises(ValueError, match=rf"{math.hypot(half, half):.3f} m over all yaws and its half-width "
+                                         rf"{half:.3f} m; the open fingers of the default design leave "
+                                         rf"{APERTURE_RADIUS:.3f} m, or straddle"):
         mesh_object(tmp_path / "wide.stl")
 
 
@@ -198,7 +202,7 @@ def test_the_environment_takes_an_object_file(user_files):
     import gymnasium as gym
 
     _, part = user_files
-    env = gym.make("gripper:SoftGripperGrasp-v10", objects=f"block,{part}")
+    env = gym.make("gripper:SoftGripperGrasp-v11", objects=f"block,{part}")
     env.reset(seed=1)
     names = set()
     for seed in range(4):

@@ -9,7 +9,7 @@ from gripper.bench.defaults import DEFAULT_WORKERS
 from gripper.bench.execution import check_scheduler
 from gripper.cli.inputs import WORKERS_MAX, field_option, given, names, number
 from gripper.core.params import ACTUATIONS, GripperParams
-from gripper.experiments.protocol import APPROACHES, GRASP_CHOICES, POLICIES, GraspProtocol, TrialNoise
+from gripper.experiments.protocol import APPROACHES, GRASP_CHOICES, POLICIES, WRIST_RULES, GraspProtocol, TrialNoise
 
 # What --grip-pressure allows: the field's bound is the regulator class's, but a run refuses more
 # than the design's own pneumatic.pressure_max (the calibration's range), which the help says.
@@ -107,6 +107,11 @@ def check_applies(args, params: GripperParams) -> None:
     if getattr(args, "approach", None) == "catalogue" and given(args, "no_centre"):
         raise ValueError("--no-centre: applies to --approach sensed (the palm camera's centring); --approach "
                          "catalogue places the palm by the object's catalogue size")
+    if getattr(args, "approach", None) == "catalogue" and given(args, "wrist"):
+        raise ValueError("--wrist: applies to --approach sensed (the turn follows the camera's footprint); --approach "
+                         "catalogue keeps the palm at zero yaw")
+    if given(args, "wrist") and not params.lift.yaw_enabled:
+        raise ValueError("--wrist: this design has no wrist (lift.yaw_enabled = false in its parameters)")
     if given(args, "force_calibration") and not getattr(args, "calibration", None):
         raise ValueError("--force-calibration: applies a --calibration made for another design; give --calibration "
                          "FILE, or leave --force-calibration out")
@@ -117,7 +122,7 @@ def protocol_and_noise(args, params: GripperParams):
     check_applies(args, params)
     proto = GraspProtocol(close_command_scale=args.close_scale, release=args.release, policy=args.policy,
                           grip_tension=args.grip_tension, grip_pressure=args.grip_pressure, approach=args.approach,
-                          grasp=args.grasp, centre=not args.no_centre).validate()
+                          grasp=args.grasp, centre=not args.no_centre, wrist=args.wrist).validate()
     noise = TrialNoise(xy=args.noise, mass_frac=args.mass_noise, friction_frac=args.friction_noise).validate()
     return proto, noise
 
@@ -155,6 +160,9 @@ def with_protocol(p):
                         "the envelope; or force one (default %(default)s)")
     p.add_argument("--no-centre", action="store_true",
                    help="sensed approach: do not centre the palm over the sensed object")
+    p.add_argument("--wrist", choices=WRIST_RULES, default=proto.wrist,
+                   help="sensed approach: footprint turns the palm so a finger pair closes across the part's "
+                        "width, or straddles a long part; fixed keeps the palm at zero yaw (default %(default)s)")
     return p
 
 

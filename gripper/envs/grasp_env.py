@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v10``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v11``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v10")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v11")``.
 """
 
 from __future__ import annotations
@@ -241,7 +241,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v10", **kwargs)``: the fields of
+    ``gymnasium.make("gripper:SoftGripperGrasp-v11", **kwargs)``: the fields of
     :class:`gripper.envs.config.EnvConfig` (each declared once there, with its unit, range and
     reason; the table is generated into ``docs/environment.md``), ``params`` (a GripperParams or
     a parameter file), ``calibration`` (a ``gripper calibrate`` file) and the renderer's
@@ -315,10 +315,15 @@ class SoftGripperGraspEnv(gym.Env):
       model of paper 001's actuator (``docs/pneumatic.md``): its springs, stiffening, knee and
       chamber moment change, so the pneumatic gripper's episodes change. The cable gripper's
       are v9's. The spaces, rewards and episode rules are unchanged. v9 is no longer registered.
+    - v11, package 0.21.0: the default cable gripper chosen by the gripping-range study
+      (``docs/envelope.md``): its palm radius, its fingers' splay and its tapered tips change,
+      and the palm sits on a wrist, which the environment holds at zero yaw. Every episode's
+      dynamics change. The spaces, rewards and episode rules are unchanged. v10 is no longer
+      registered.
 
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v10", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v11", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """

@@ -6,7 +6,7 @@ Only the ids and entry points are registered here; the environment modules are i
 
 from __future__ import annotations
 
-ENV_ID = "SoftGripperGrasp-v10"
+ENV_ID = "SoftGripperGrasp-v11"
 # An episode's length in control steps: 300 x 20 ms = 6 s, a grasp and a 1 s hold with room to spare.
 MAX_EPISODE_STEPS = 300
 

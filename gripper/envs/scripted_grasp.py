@@ -15,7 +15,7 @@ from the velocity actions, so the state says where in the grasp the policy is.
 
 Example:
     >>> import gymnasium as gym                                                  # doctest: +SKIP
-    >>> envs = gym.make_vec("gripper:SoftGripperGrasp-v10", num_envs=4, action_mode="synergy",
+    >>> envs = gym.make_vec("gripper:SoftGripperGrasp-v11", num_envs=4, action_mode="synergy",
     ...                     vectorization_mode="vector_entry_point")            # doctest: +SKIP
     >>> expert = ScriptedGrasp(envs.unwrapped.config)                          # doctest: +SKIP
     >>> obs, _ = envs.reset(seed=0)                                            # doctest: +SKIP

@@ -26,8 +26,8 @@ The rule (:func:`choose_grasp`), from geometry: the fingertip grasp when the str
 fingertips can reach the support beside the object, that is when the sensed top is at least
 ``palm_clearance`` below the palm at the fingertip grasp's start, and the sensed footprint's
 extent along the fingers after the wrist's turn (half its length; its radius, the farthest
-point from its centroid, when the wrist does not turn) is inside the open fingers' grasping
-faces at the tips (:func:`open_radius`), or the part is straddled; otherwise
+point from its centroid, when the wrist does not turn) stays ``fingertip_margin`` inside the
+open fingers' grasping faces at the tips (:func:`open_radius`), or the part is straddled; otherwise
 (a tall object, or one the tips would land on) the envelope. The palm is centred over the
 sensed footprint's centroid (``GraspProtocol.centre``), clamped to the stage's travel.
 
@@ -134,7 +134,7 @@ def choose_grasp(est: ObjectEstimate, p: GripperParams, proto, pose: str | None 
     tip = drive.fingertip_clearance(proto)
     clears_top = est.height + proto.palm_clearance <= drive.finger_length + tip
     reach = {"none": est.radius, "across": 0.5 * est.length, "straddle": 0.0}[pose]
-    fits = reach < open_radius(p)
+    fits = reach < open_radius(p) - proto.fingertip_margin
     return "fingertip" if clears_top and fits else "envelope"
 
 

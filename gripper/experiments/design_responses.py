@@ -1,6 +1,7 @@
 """The responses a design study measures on one design (paper 001's outputs, on this finger):
 the bending curve and its figures, the cable tension for a bending angle, the blocked tip force,
-grasp success, the capability envelope's gripping range, the payload and the everyday parts. Pure functions of the parameters: the study layer
+grasp success, the capability envelope's gripping range, the payload and the everyday parts.
+Pure functions of the parameters: the study layer
 (:mod:`gripper.studies.study`) decides which designs to run.
 
 Example:

@@ -74,6 +74,11 @@ class GraspProtocol(Validated):
                        source="footprint: the wrist turns a finger pair across the sensed footprint's width, "
                        "or straddles a part longer than the opening (gripper.experiments.approach); fixed: "
                        "no turn (0.20.0's grasp)")
+    fingertip_margin: float = param(
+        0.010, "m", ge=0, le=0.1,
+        source="the fingertip grasp only for a footprint this far inside the open tips: a part nearly as wide as the "
+        "opening meets the tips at its bottom edge, the fingers barely curled (0.21.0's gripping-range study: a 90 mm "
+        "box inside a 99.7 mm opening held 0 of 3 by the fingertips, 3 of 3 by the envelope; docs/controller.md)")
     wrist_speed: float = param(1.5, "rad/s", ge=0.01, le=20,
                                source="assumed: a small rotary stage, a quarter turn in about a second")
     fingertip_clearance: float = param(0.0, "m", ge=0, le=0.05,
