@@ -250,3 +250,32 @@ def test_a_gripping_range_study_gives_the_same_results_at_one_and_two_workers(tm
     assert recs == study_records(two) and [r["status"] for r in recs] == ["ok"] * 3
     names = set(recs[0]["metrics"])
     assert {"envelope_range_m", "payload_box_60mm_kg", "part_die_success_rate"} <= names
+
+
+# -- the default the study chose: the issue's acceptance lines ------------------------------------
+
+@pytest.mark.parametrize("shape, width, mass", [
+    ("box", 0.015, 0.05), ("cylinder", 0.015, 0.05), ("sphere", 0.025, 0.05),      # the lower ends
+    ("box", 0.090, 0.05), ("cylinder", 0.090, 0.05), ("sphere", 0.110, 0.05),      # 0.16.0's upper ends
+    ("box", 0.060, 0.5),                                                           # the payload
+])
+def test_the_default_holds_the_gripping_range_it_was_chosen_for(shape, width, mass):
+    """The envelope's rule (2 of 3 trials, seed 0, friction 0.6) at the ends the issue sets."""
+    from gripper.experiments.trial import run_trial
+    from gripper.objects.envelope_objects import envelope_object, point_held
+
+    obj = envelope_object(shape, width, mass, 0.6)
+    recs = [run_trial(obj, 0, i) for i in range(3)]
+    assert all(r.status == "ok" and r.warnings == 0 for r in recs)
+    assert point_held(sum(bool(r.success) for r in recs) / 3), [r.failed_phase for r in recs]
+
+
+@pytest.mark.parametrize("name", ["die", "aa_cell", "pen"])
+def test_the_default_picks_the_everyday_parts(name, tmp_path):
+    """At least 8 of 10 on seed 1 (the issue's line), undamaged."""
+    from gripper.experiments.trial import run_trial
+
+    obj = everyday_part(name, tmp_path)
+    recs = [run_trial(obj, 1, i) for i in range(10)]
+    assert all(r.status == "ok" and not r.damaged for r in recs)
+    assert sum(bool(r.success) for r in recs) >= 8, [r.failed_phase for r in recs]

@@ -177,8 +177,8 @@ class FingerGeometry(Validated):
     extension_limit_deg: float = param(5.0, "deg", ge=0, le=90,
                                        source="assumed: the bridge and closed back face resist extension")
     tip_taper: float = param(1.0, "-", gt=0, le=1,
-                             source="assumed: square, as paper 000's photograph (a design field of the gripping-range "
-                             "study, docs/envelope.md)")
+                             source="chosen by the gripping-range study (docs/envelope.md); 1 is the square tip of "
+                             "paper 000's photograph")
 
     @property
     def n_hinges(self) -> int:
@@ -444,11 +444,14 @@ class GripperLayout(Validated):
     SECTION = "layout"
 
     n_fingers: int = param(4, "-", ge=1, le=12, integer=True, source="paper 000 §V: four fingers")
-    palm_radius: float = param(0.040, "m", within=PALM_SIZE,
-                               source="assumed: an 80 mm opening takes every object of the grasp set")
+    palm_radius: float = param(0.025, "m", within=PALM_SIZE,
+                               source="chosen by the gripping-range study (gripper/data/studies/gripping_range.toml, "
+                               "docs/envelope.md): the widest range that keeps the five default objects; 40 mm "
+                               "until 0.20.0 (assumed)")
     palm_thickness: float = param(0.020, "m", within=PALM_SIZE, source="assumed: a 3D-printed hub")
-    mount_tilt_deg: float = param(0.0, "deg", ge=-45, le=45,
-                                  source="assumed: fingers hang straight, as in the paper's photograph")
+    mount_tilt_deg: float = param(15.0, "deg", ge=-45, le=45,
+                                  source="chosen by the gripping-range study (docs/envelope.md): splayed tips open "
+                                  "wide over a small palm; 0 until 0.20.0 (assumed: straight, as in the paper's photograph)")
     palm_mass: float = param(0.35, "kg", within=PALM_MASS, source="assumed: four 55 g servos and a printed hub")
 
 
