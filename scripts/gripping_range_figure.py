@@ -49,7 +49,10 @@ def main(argv=None) -> int:
     study = load_study("gripping_range")
     limits = study.limits
     rows = [json.loads(line) for line in (args.run / "results.jsonl").read_text().splitlines() if line.strip()]
-    base = study.base
+    from gripper.core.params import GripperParams
+
+    # the run's own base design (the default of the day it ran), not today's default
+    base = GripperParams.from_dict(json.loads((args.run / "study.json").read_text())["study"]["base"])
     head = ("| point | palm radius | splay | tip taper | box | cylinder | sphere | payload, 60 mm box | "
             "die / AA cell / pen | balloon / block / cylinder / paper box / bag | meets |")
     print(head)
