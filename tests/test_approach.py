@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import pytest
 
@@ -45,9 +46,13 @@ def test_the_grasp_rule_is_geometry():
 
 def test_free_closing_reach_is_the_fingers_own():
     angles, low, radial = finger_reach(P.replace(sim=P.sim.replace(timestep=0.002)))
-    # straight: the finger's length below the palm, the grasping face at the palm radius
-    assert low[0] == pytest.approx(P.finger.length, abs=1.5e-3)
-    assert radial[0] == pytest.approx(P.layout.palm_radius, abs=1.5e-3)
+    # straight: splayed by the mount's tilt t, the grasping face's tip corner lowest, L cos t + h sin t
+    # below the palm; the grasping face at the palm radius at the mount
+    t = math.radians(P.layout.mount_tilt_deg)
+    assert low[0] == pytest.approx(P.finger.length * math.cos(t) + P.finger.height * math.sin(t), abs=1.5e-3)
+    # (the pads' rounded top edge leaves the face's first vertex below the palm, where the splay
+    # has carried it outwards: up to the edge radius more)
+    assert radial[0] == pytest.approx(P.layout.palm_radius, abs=1.5e-3 + P.contact.edge_radius)
     assert (low[-1] < low[0] - 0.04) and radial.min() < 0.5 * P.layout.palm_radius
 
 

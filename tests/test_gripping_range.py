@@ -112,7 +112,8 @@ def test_a_part_longer_than_the_opening_is_straddled(yaw):
 def test_the_straddle_gap_is_the_fingers_own_geometry():
     """The closed form R sin 45° - (w/2) cos 45° at the open tips against the compiled model:
     the fingers' collision vertices at the tip's level, their distance to the line midway between
-    two neighbours (the fingers hang under their own weight: 1 mm)."""
+    two neighbours (the pads' edges are rounded to ``contact.edge_radius``, which moves the corner
+    out by up to that much)."""
     m = build_scene_spec(P, with_object=False).compile()
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
@@ -129,7 +130,7 @@ def test_the_straddle_gap_is_the_fingers_own_geometry():
     line = np.array([math.cos(math.pi / 4), math.sin(math.pi / 4)])
     dist = np.abs(base[:, 0] * line[1] - base[:, 1] * line[0])
     at_root = P.layout.palm_radius * math.sqrt(0.5) - 0.5 * P.finger.width * math.sqrt(0.5)
-    assert dist.min() == pytest.approx(at_root, abs=1e-3)
+    assert dist.min() == pytest.approx(at_root, abs=P.contact.edge_radius)
     assert straddle_gap(P) >= at_root - 1e-12  # splayed tips only open the gap
 
 
@@ -254,6 +255,7 @@ def test_a_gripping_range_study_gives_the_same_results_at_one_and_two_workers(tm
 
 # -- the default the study chose: the issue's acceptance lines ------------------------------------
 
+@pytest.mark.slow
 @pytest.mark.parametrize("shape, width, mass", [
     ("box", 0.015, 0.05), ("cylinder", 0.015, 0.05), ("sphere", 0.025, 0.05),      # the lower ends
     ("box", 0.090, 0.05), ("cylinder", 0.090, 0.05), ("sphere", 0.110, 0.05),      # 0.16.0's upper ends
@@ -270,6 +272,7 @@ def test_the_default_holds_the_gripping_range_it_was_chosen_for(shape, width, ma
     assert point_held(sum(bool(r.success) for r in recs) / 3), [r.failed_phase for r in recs]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["die", "aa_cell", "pen"])
 def test_the_default_picks_the_everyday_parts(name, tmp_path):
     """At least 8 of 10 on seed 1 (the issue's line), undamaged."""

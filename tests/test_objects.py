@@ -13,8 +13,10 @@ from gripper.objects.scene_objects import Placement
 
 
 def test_library_fits_the_aperture_with_placement_noise():
-    # straight-finger faces stand palm_radius from the axis; trials offset objects by 10 mm
-    aperture = GripperParams().layout.palm_radius
+    # the open fingers' faces stand APERTURE_RADIUS from the axis at their tips; trials offset objects by 10 mm
+    from gripper.objects.grasp_object import APERTURE_RADIUS
+
+    aperture = APERTURE_RADIUS
     for obj in LIBRARY.values():
         obj.validate()
         assert obj.half_width + 0.010 < aperture, obj.name

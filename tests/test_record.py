@@ -42,7 +42,7 @@ def test_an_error_record_omits_the_outcome_and_keeps_the_reason(record):
                               damage_measure=None, damage_limit=None, close_command_rad=None,
                               policy=None, servo_at_grasp=None, servo_at_hold_end=None, grip_tension_N=None,
                               contact_time_s=None, grasp_time_s=None, grasp=None, palm_xy_m=None,
-                              depth_estimate=None)
+                              depth_estimate=None, wrist_yaw_rad=None, pose=None)
     d = err.to_dict()
     assert "lift_height_m" not in d and d["error"] == "nan at t=1"
     assert TrialRecord.from_dict(json.loads(json.dumps(d))) == err

@@ -57,7 +57,7 @@ def test_a_wheel_from_a_clean_clone_runs_from_elsewhere(tmp_path):
     elsewhere.mkdir()
     done = subprocess.run([str(py), "-c", CHECK], cwd=elsewhere, capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stdout + done.stderr
-    assert '"nu": 7' in done.stdout and '"status": "ok"' in done.stdout, done.stdout
+    assert '"nu": 8' in done.stdout and '"status": "ok"' in done.stdout, done.stdout
     # the installed package's models are never written: write-models wants a folder
     cli = venv / "bin" / "gripper"
     refused = subprocess.run([str(cli), "write-models"], cwd=elsewhere, capture_output=True, text=True, timeout=300)

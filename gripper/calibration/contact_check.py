@@ -69,7 +69,7 @@ CLAMP_LENGTH = 0.008  # m, the reference's clamp (ReferenceConfig.clamp_length)
 # Tensions of the blocked-tip comparison [N]: the small-load range where both models stay
 # near straight (largest hinge angle under about 6°, see SMALL_ROTATION_DEG).
 LINEAR_TENSIONS = (0.002, 0.005, 0.01, 0.015, 0.02)
-# The grasp controller's range of cable tensions [N] (GRIP_TENSION is 5 N).
+# The grasp controller's range of cable tensions [N] (GRIP_TENSION is 7.5 N since 0.21.0).
 SET_POINT_TENSIONS = (0.5, 1.0, 2.0, 3.5, 5.0)
 # deg: the largest hinge angle up to which the linear model counts as small-rotation
 SMALL_ROTATION_DEG = 6.0

@@ -451,7 +451,8 @@ class GripperLayout(Validated):
     palm_thickness: float = param(0.020, "m", within=PALM_SIZE, source="assumed: a 3D-printed hub")
     mount_tilt_deg: float = param(15.0, "deg", ge=-45, le=45,
                                   source="chosen by the gripping-range study (docs/envelope.md): splayed tips open "
-                                  "wide over a small palm; 0 until 0.20.0 (assumed: straight, as in the paper's photograph)")
+                                  "wide over a small palm; 0 until 0.20.0 (assumed: straight, as in the paper's "
+                                  "photograph)")
     palm_mass: float = param(0.35, "kg", within=PALM_MASS, source="assumed: four 55 g servos and a printed hub")
 
 

@@ -37,6 +37,7 @@ Example:
     ('envelope', 'fingertip')
     >>> from gripper.core.params import GripperParams
     >>> round(straddle_gap(GripperParams()) * 1e3, 1)     # mm, at the default's open tips
+    29.6
 """
 
 from __future__ import annotations
