@@ -56,9 +56,8 @@ from gripper.sim.depth import ObjectEstimate
 GRASPS = ("envelope", "fingertip")
 # How the turned palm meets the footprint: not turned, a finger across its width, or straddling it.
 POSES = ("none", "across", "straddle")
-# What a straddled part's side leaves to the open fingers' nearest corners [m] (assumed: the
-# palm camera's width and centroid errors, under 1 mm each on the parts measured in
-# docs/controller.md, with room for the part's placement noise in the turn).
+# What a straddled part's side leaves to the open fingers' nearest corners [m] (assumed: room for
+# the palm camera's width and centroid errors and for the fingers' sag; not measured).
 STRADDLE_MARGIN = 0.003
 
 # The settling time at each command of the free-closing reach's table (the commands are the
