@@ -76,6 +76,14 @@ def blocked_tip_force(p: GripperParams, r: float) -> float:
     return float(np.linalg.norm(d.efc_force[:d.nefc][rows]))
 
 
+def success_rate(obj, p: GripperParams, seed: int, protocol: GraspProtocol, trials: int) -> float | None:
+    """The fraction of trials 0..``trials``-1 of ``obj`` that succeeded, among those that ended
+    (None: none ended)."""
+    ok = [bool(r["success"]) for r in (run_trial(obj, seed, i, params=p, protocol=protocol) for i in range(trials))
+          if r["status"] == "ok"]
+    return sum(ok) / len(ok) if ok else None
+
+
 def envelope_response(p: GripperParams, opts: dict, seed: int, protocol: GraspProtocol) -> dict[str, float | None]:
     """Per shape, the smallest and largest width [m] held in ``trials`` grasps (the envelope's rule:
     :func:`gripper.objects.envelope_objects.point_held`; None: none held), on the grid ``sizes`` at
@@ -86,10 +94,7 @@ def envelope_response(p: GripperParams, opts: dict, seed: int, protocol: GraspPr
     for shape in opts.get("shapes", list(SHAPES)):
         held = []
         for size in sorted(float(w) for w in opts.get("sizes", [0.03, 0.06, 0.09])):
-            obj = envelope_object(shape, size, mass, mu)
-            recs = [run_trial(obj, seed, i, params=p, protocol=protocol) for i in range(trials)]
-            ok = [bool(r["success"]) for r in recs if r["status"] == "ok"]
-            if point_held(sum(ok) / len(ok) if ok else None):
+            if point_held(success_rate(envelope_object(shape, size, mass, mu), p, seed, protocol, trials)):
                 held.append(size)
         out[f"envelope_{shape}_smallest_m"] = held[0] if held else None
         out[f"envelope_{shape}_largest_m"] = held[-1] if held else None
@@ -104,10 +109,7 @@ def payload_response(p: GripperParams, opts: dict, seed: int, protocol: GraspPro
     mu, trials = float(opts.get("friction", 0.6)), int(opts.get("trials", 3))
     held = []
     for mass in sorted(float(m) for m in opts.get("masses", [0.2, 0.5, 1.0])):
-        obj = envelope_object(shape, size, mass, mu)
-        recs = [run_trial(obj, seed, i, params=p, protocol=protocol) for i in range(trials)]
-        ok = [bool(r["success"]) for r in recs if r["status"] == "ok"]
-        if point_held(sum(ok) / len(ok) if ok else None):
+        if point_held(success_rate(envelope_object(shape, size, mass, mu), p, seed, protocol, trials)):
             held.append(mass)
     return {payload_metric(opts): held[-1] if held else None}
 
@@ -127,10 +129,8 @@ def parts_response(p: GripperParams, opts: dict, seed: int, protocol: GraspProto
     out: dict[str, float | None] = {}
     with tempfile.TemporaryDirectory(prefix="gripper-parts-") as tmp:
         for name in opts.get("parts", list(PARTS)):
-            obj = everyday_part(name, tmp)
-            recs = [run_trial(obj, seed, i, params=p, protocol=protocol) for i in range(int(opts.get("trials", 5)))]
-            ok = [bool(r["success"]) for r in recs if r["status"] == "ok"]
-            out[f"part_{name}_success_rate"] = sum(ok) / len(ok) if ok else None
+            out[f"part_{name}_success_rate"] = success_rate(everyday_part(name, tmp), p, seed, protocol,
+                                                            int(opts.get("trials", 5)))
     return out
 
 
