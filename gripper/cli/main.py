@@ -73,6 +73,11 @@ class Terminated(BaseException):
 
 
 def _on_sigterm(signum, frame):
+    # the cluster is torn down mid-task after this: its scheduler then logs the results it can no
+    # longer gather, which would add lines to the one the termination prints
+    import logging
+
+    logging.getLogger("distributed").setLevel(logging.CRITICAL)
     raise Terminated
 
 
