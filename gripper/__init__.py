@@ -24,10 +24,10 @@ Damage models checked with a platen crush (the balloon bursts when flattened):
     >>> run_trial("bag", camera=DepthCamera(dropout=0.1)).depth_estimate  # doctest: +SKIP
     True
 
-The Gymnasium environment ``SoftGripperGrasp-v11`` is registered on import:
+The Gymnasium environment ``SoftGripperGrasp-v12`` is registered on import:
 
     >>> import gymnasium as gym
-    >>> env = gym.make("gripper:SoftGripperGrasp-v11", objects="block")   # doctest: +SKIP
+    >>> env = gym.make("gripper:SoftGripperGrasp-v12", objects="block")   # doctest: +SKIP
 """
 
 import importlib

@@ -269,7 +269,7 @@ def test_env_accepts_calibration(tmp_path):
 
     p = GripperParams()
     path = _calibration(p, k=0.05).save(tmp_path / "cal.json")
-    env = gym.make("gripper:SoftGripperGrasp-v11", calibration=str(path))
+    env = gym.make("gripper:SoftGripperGrasp-v12", calibration=str(path))
     assert env.unwrapped.config.params.springs.stiffness == (0.05,) * 5
     env.close()
 

@@ -13,7 +13,7 @@ from gymnasium.utils.env_checker import check_env
 import gripper  # noqa: F401  (registers the environment)
 from gripper.envs.grasp_env import SoftGripperGraspEnv
 
-ENV_ID = "gripper:SoftGripperGrasp-v11"
+ENV_ID = "gripper:SoftGripperGrasp-v12"
 
 # Warnings check_env may raise, each with its reason:
 ALLOWED_WARNINGS = (
@@ -303,8 +303,10 @@ def test_observations_are_the_physical_values_over_their_scales():
     np.testing.assert_allclose(a * scaled.observation_divisor, b, rtol=1e-12, atol=0)
 
 
-def test_the_best_step_pays_one():
-    """v7's dense reward: reach, lift and success together pay at most 1 a step."""
+def test_a_held_step_at_the_grasp_point_pays_one():
+    """v12's dense reward: contact (all fingers, at the grasp point), lift and success pay 1 a
+    step; reach pays only while the fingers are open, so no step pays more than 1 + reach."""
     from gripper.envs.config import DEFAULT_REWARD_WEIGHTS as w
 
-    assert w["reach"] + w["lift"] + w["success"] == pytest.approx(1.0)
+    assert w["contact"] + w["lift"] + w["success"] == pytest.approx(1.0)
+    assert w["reach"] < w["contact"] < w["success"]

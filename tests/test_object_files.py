@@ -202,7 +202,7 @@ def test_the_environment_takes_an_object_file(user_files):
     import gymnasium as gym
 
     _, part = user_files
-    env = gym.make("gripper:SoftGripperGrasp-v11", objects=f"block,{part}")
+    env = gym.make("gripper:SoftGripperGrasp-v12", objects=f"block,{part}")
     env.reset(seed=1)
     names = set()
     for seed in range(4):

@@ -50,7 +50,7 @@ def test_simulating_maps_no_graphics_library():
     """A fresh interpreter without MUJOCO_GL: import gripper, make and step the environment."""
     out = _fresh("""
 import gripper, gymnasium as gym
-env = gym.make("gripper:SoftGripperGrasp-v11", objects="block")
+env = gym.make("gripper:SoftGripperGrasp-v12", objects="block")
 env.reset(seed=0)
 for _ in range(3):
     env.step(env.action_space.sample())
@@ -64,7 +64,7 @@ def test_rendering_works_headless_by_default():
     """The same interpreter renders once it is asked to: the backend is chosen then."""
     out = _fresh("""
 import gripper, gymnasium as gym
-env = gym.make("gripper:SoftGripperGrasp-v11", objects="block", render_mode="rgb_array", width=64, height=48)
+env = gym.make("gripper:SoftGripperGrasp-v12", objects="block", render_mode="rgb_array", width=64, height=48)
 env.reset(seed=0)
 assert gl() == [], gl()
 img = env.render()

@@ -9,7 +9,7 @@ pytest.importorskip("stable_baselines3")
 import gripper  # noqa: E402,F401  (registers the environment)
 from gripper.envs.sb3 import make_sb3_vec_env, split_infos  # noqa: E402
 
-ENV_ID = "gripper:SoftGripperGrasp-v11"
+ENV_ID = "gripper:SoftGripperGrasp-v12"
 
 
 def test_same_step_autoreset_matches_single_envs():

@@ -21,7 +21,7 @@ from stable_baselines3 import PPO
 from stable_baselines3.common.env_util import make_vec_env
 
 torch.optim.Adam([torch.zeros(1, requires_grad=True)])  # the reported crash point
-env = make_vec_env("gripper:SoftGripperGrasp-v11", n_envs=2, seed=0, env_kwargs={"objects": "block"})
+env = make_vec_env("gripper:SoftGripperGrasp-v12", n_envs=2, seed=0, env_kwargs={"objects": "block"})
 model = PPO("MlpPolicy", env, n_steps=512, batch_size=128, seed=0, verbose=0, device="cpu")
 model.learn(total_timesteps=2048)
 print(model.num_timesteps)

@@ -33,7 +33,7 @@ m = mujoco.MjModel.from_xml_path(str(MODELS_DIR / "soft_gripper" / "scene.xml"))
 assert mujoco.MjModel.from_xml_path(str(MODELS_DIR / "pneumatic_gripper" / "scene.xml")).nu == 8
 assert (DEFAULT_CALIBRATION_DIR / "calibration.json").is_file()
 rec = run_trial("block", seed=0, index=0, params=GripperParams())
-env = gym.make("gripper:SoftGripperGrasp-v11", objects="block")
+env = gym.make("gripper:SoftGripperGrasp-v12", objects="block")
 obs, info = env.reset(seed=0)
 obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
 print(json.dumps({"nu": m.nu, "status": rec.status, "success": rec.success, "obs": len(obs)}))

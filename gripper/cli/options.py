@@ -127,11 +127,13 @@ def protocol_and_noise(args, params: GripperParams):
     return proto, noise
 
 
-def needs_rl(command: str) -> None:
+def needs_rl(command: str, contrib: bool = False) -> None:
+    """Refuse ``command`` in one line unless the rl extra is installed (``contrib``: sb3-contrib too)."""
     import importlib.util
 
-    if importlib.util.find_spec("stable_baselines3") is None or importlib.util.find_spec("torch") is None:
-        raise ValueError(f"{command}: needs the rl extra (stable-baselines3 and torch): "
+    names = ("stable_baselines3", "torch") + (("sb3_contrib",) if contrib else ())
+    if any(importlib.util.find_spec(n) is None for n in names):
+        raise ValueError(f"{command}: needs the rl extra (stable-baselines3, sb3-contrib and torch): "
                          "pip install 'gripper[rl]' (in this repository: .venv/bin/pip install -e '.[rl]')")
 
 

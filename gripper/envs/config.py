@@ -40,20 +40,28 @@ IDENTITY_QUAT = np.array([1.0, 0.0, 0.0, 0.0])  # orientation reported for a fle
 
 # A finger touches the object above this normal force [N] (the contact reward).
 CONTACT_FORCE = 0.05
+# Two fingers oppose each other when their azimuths (evenly spaced, 2πk/n) are at least this far
+# apart [rad]: across the palm for four fingers (180°), every pair for three (120°). A grasp needs
+# the object pressed from opposite sides; fingertips resting on its top press from one side only.
+OPPOSING_ANGLE = 2.0 * math.pi / 3.0 - 1e-9
 # Length scale of the reach reward [m]: 1 - tanh(d / REACH_SCALE) falls from 0.52 at the
 # benchmark's grasp pose over the block (d = 26 mm) to 0.06 at the start (d = 88 mm).
 REACH_SCALE = 0.05
-# The dense reward's weights. Since v7 they are v6's (reach 1, lift 2, success 5, damage 10,
-# action 0.01) divided by 8, so that the best step pays 1 (reach + lift + success) and returns
-# stay within a few hundred: the scale a default PPO or SAC expects without reward normalisation
-# (the optimum is unchanged, the reward only rescaled).
+# The dense reward's weights (v12): a ladder whose every rung pays more than the one below it,
+# measured with the reference policies of gripper.envs.reference_policies (docs/environment.md,
+# "The reward ladder"). Reach pays only while the fingers are open, so a hand closed in the air
+# earns nothing; contact pays only when opposing fingers press, weighted by how close the grasp
+# point is, so fingertips on the object's top earn little; lift and success as in v7. A held step
+# at the grasp point pays 1 (contact + lift + success).
 DEFAULT_REWARD_WEIGHTS = {
-    "reach": 0.125,   # times 1 - tanh(distance between the grasp point and the object / REACH_SCALE)
-    # fraction of fingers pressing on the object: 0 by default, since paying for touch taught PPO
-    # to touch with half-closed fingers during the descent and stop there (docs/environment.md)
-    "contact": 0.0,
-    "lift": 0.25,     # object rise above its start / success height, clipped to [0, 1]
-    "success": 0.625,  # per control step at which the grasp counts as held
+    # times 1 - tanh(grasp point to object / REACH_SCALE), times the fingers' openness
+    # (1 - the drive's mean set-point over its range)
+    "reach": 0.1,
+    # times the fraction of fingers pressing on the object (> CONTACT_FORCE) when two opposing
+    # ones do (else 0), times the reach factor 1 - tanh(d / REACH_SCALE)
+    "contact": 0.2,
+    "lift": 0.2,      # object rise above its start / success height, clipped to [0, 1]
+    "success": 0.6,   # per control step at which the grasp counts as held
     "damage": 1.25,   # once, when the object is damaged
     "action": 0.00125,  # per unit squared action norm
 }

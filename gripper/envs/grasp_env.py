@@ -1,6 +1,6 @@
-"""Gymnasium environment ``SoftGripperGrasp-v11``: grasp and lift one object with the soft gripper.
+"""Gymnasium environment ``SoftGripperGrasp-v12``: grasp and lift one object with the soft gripper.
 
-Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v11")``.
+Registered when ``gripper`` is imported: ``gymnasium.make("gripper:SoftGripperGrasp-v12")``.
 """
 
 from __future__ import annotations
@@ -203,12 +203,14 @@ class SoftGripperGraspEnv(gym.Env):
     else 0. ``"dense"``: the sum of these terms, each returned in ``info`` (weights in
     ``reward_weights``, defaults in brackets):
 
-    - ``reward_reach`` = w [0.125] × (1 − tanh(d / 0.05 m)), d the distance from the grasp point
-      (mid-finger on the palm axis) to the object [m];
-    - ``reward_contact`` = w [0.0] × fraction of fingers pressing on the object (> 0.05 N): off
-      by default, since paying for touch held PPO in a local optimum (``docs/environment.md``);
-    - ``reward_lift`` = w [0.25] × clip(object rise / 0.08 m, 0, 1);
-    - ``reward_success`` = w [0.625] × is_success;
+    - ``reward_reach`` = w [0.1] × (1 − tanh(d / 0.05 m)) × openness, d the distance from the
+      grasp point (mid-finger on the palm axis) to the object [m], openness 1 − the servos' mean
+      set-point over their travel (1 open, 0 closed): coming close pays only with open fingers;
+    - ``reward_contact`` = w [0.2] × (1 − tanh(d / 0.05 m)) × fraction of fingers pressing on
+      the object (> 0.05 N), counted only when two opposing fingers press (azimuths at least
+      120° apart): a grip around the object, not fingertips on its top;
+    - ``reward_lift`` = w [0.2] × clip(object rise / 0.08 m, 0, 1);
+    - ``reward_success`` = w [0.6] × is_success;
     - ``reward_damage`` = -w [1.25], once, when the object becomes damaged;
     - ``reward_action`` = -w [0.00125] × |action|².
 
@@ -216,6 +218,12 @@ class SoftGripperGraspEnv(gym.Env):
     above its start, without slipping ``max_slip`` (20 mm) relative to the palm, for
     ``success_hold_s`` (1 s), and is not damaged: the grasp benchmark's definition of a held
     grasp (``gripper bench``), read at every control step.
+
+    The weights make a ladder (``docs/environment.md``, "The reward ladder": the returns of
+    idle, hovering, touching and holding policies, ``gripper.envs.reference_policies``): over
+    300 steps a hand closed in the air earns about 0, one hovering open about 15, one gripping
+    without lifting about 45 and a held grasp about 170. A held step at the grasp point pays 1
+    (contact + lift + success).
 
     Every dense term but the penalties is ≥ 0, and success does not end the episode
     (``terminate_on_success=False``): each held step keeps paying. Ending it on success would
@@ -241,7 +249,7 @@ class SoftGripperGraspEnv(gym.Env):
 
     ## Arguments
 
-    ``gymnasium.make("gripper:SoftGripperGrasp-v11", **kwargs)``: the fields of
+    ``gymnasium.make("gripper:SoftGripperGrasp-v12", **kwargs)``: the fields of
     :class:`gripper.envs.config.EnvConfig` (each declared once there, with its unit, range and
     reason; the table is generated into ``docs/environment.md``), ``params`` (a GripperParams or
     a parameter file), ``calibration`` (a ``gripper calibrate`` file) and the renderer's
@@ -321,9 +329,16 @@ class SoftGripperGraspEnv(gym.Env):
       dynamics change. The spaces, rewards and episode rules are unchanged. v10 is no longer
       registered.
 
+    - v12, package 0.22.0: the dense reward is a ladder (issue 49): reach pays only with open
+      fingers, contact pays again (0.2, only with opposing fingers pressing, weighted by the
+      distance to the grasp point), lift 0.2 and success 0.6 (were reach 0.125, contact 0, lift
+      0.25, success 0.625). The physics, spaces, sparse reward and episode rules are unchanged.
+      The goal-conditioned variant ``SoftGripperGraspGoal-v12`` is new
+      (:mod:`gripper.envs.goal_env`). v11 is no longer registered.
+
     Example:
         >>> import gymnasium as gym
-        >>> env = gym.make("gripper:SoftGripperGrasp-v11", objects="block")   # doctest: +SKIP
+        >>> env = gym.make("gripper:SoftGripperGrasp-v12", objects="block")   # doctest: +SKIP
         >>> obs, info = env.reset(seed=0)                                     # doctest: +SKIP
         >>> obs, r, term, trunc, info = env.step(env.action_space.sample())  # doctest: +SKIP
     """

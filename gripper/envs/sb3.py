@@ -16,6 +16,9 @@ What changes between the two conventions, and how:
   true where the episode hit its step limit without terminating (SB3 bootstraps those).
 - **Infos.** Gymnasium's dict of arrays with ``_key`` masks becomes SB3's list of per-env
   dicts; ``is_success`` is there at an episode's end, so SB3's success-rate logging works.
+- **Goal-conditioned observations.** A dict observation (``SoftGripperGraspGoal``) passes
+  through as SB3's dict of arrays, ``terminal_observation`` as one slot's dict; ``compute_reward``
+  is reached by ``env_method``, as SB3's ``HerReplayBuffer`` calls it.
 - **Seeding.** ``seed(s)`` seeds the next ``reset()``: slot ``i`` then runs the episode a single
   environment reset with seed ``s + i`` runs (the native env's convention, and SB3's).
 
@@ -61,6 +64,18 @@ def split_infos(info: dict, n: int) -> list[dict]:
     return out
 
 
+def _item(obs, i: int):
+    """Slot ``i``'s observation (an array, or a dict of arrays for a goal-conditioned env)."""
+    return {k: v[i].copy() for k, v in obs.items()} if isinstance(obs, dict) else obs[i].copy()
+
+
+def _where(mask: np.ndarray, a, b):
+    """``a`` where ``mask`` (per slot), else ``b``; arrays or dicts of arrays."""
+    if isinstance(a, dict):
+        return {k: np.where(mask.reshape(-1, *([1] * (np.ndim(a[k]) - 1))), a[k], b[k]) for k in a}
+    return np.where(mask.reshape(-1, *([1] * (np.ndim(a) - 1))), a, b)
+
+
 class SB3VecEnv(VecEnv):
     """SB3 ``VecEnv`` over a Gymnasium vector environment with ``NEXT_STEP`` autoreset and
     ``reset_mask`` support (the native :class:`gripper.envs.vector_env.SoftGripperGraspVectorEnv`)."""
@@ -92,10 +107,10 @@ class SB3VecEnv(VecEnv):
         dones = terminated | truncated
         if dones.any():
             for i in np.flatnonzero(dones):
-                infos[i]["terminal_observation"] = obs[i].copy()
+                infos[i]["terminal_observation"] = _item(obs, i)
                 infos[i]["TimeLimit.truncated"] = bool(truncated[i] and not terminated[i])
             fresh, reset_info = self.venv.reset(options={"reset_mask": dones})
-            obs = np.where(dones[:, None], fresh, obs)
+            obs = _where(dones, fresh, obs)
             for i, r in enumerate(split_infos(reset_info, self.num_envs)):
                 if dones[i]:
                     self.reset_infos[i] = r
@@ -121,11 +136,11 @@ class SB3VecEnv(VecEnv):
         return [self.venv.render()] + [None] * (self.num_envs - 1)
 
 
-def make_sb3_vec_env(num_envs: int = 8, **env_kwargs: Any) -> SB3VecEnv:
-    """``num_envs`` slots of the native vector environment (``SoftGripperGrasp``'s keyword
-    arguments in ``env_kwargs``) behind :class:`SB3VecEnv`."""
+def make_sb3_vec_env(num_envs: int = 8, env_id: str = ENV_ID, **env_kwargs: Any) -> SB3VecEnv:
+    """``num_envs`` slots of the native vector environment ``env_id`` (``SoftGripperGrasp`` or
+    its goal-conditioned variant; their keyword arguments in ``env_kwargs``) behind :class:`SB3VecEnv`."""
     import gymnasium
 
-    venv = gymnasium.make_vec(f"gripper:{ENV_ID}", num_envs=num_envs, vectorization_mode="vector_entry_point",
+    venv = gymnasium.make_vec(f"gripper:{env_id}", num_envs=num_envs, vectorization_mode="vector_entry_point",
                               **env_kwargs)
     return SB3VecEnv(venv)

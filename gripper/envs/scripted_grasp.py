@@ -15,7 +15,7 @@ from the velocity actions, so the state says where in the grasp the policy is.
 
 Example:
     >>> import gymnasium as gym                                                  # doctest: +SKIP
-    >>> envs = gym.make_vec("gripper:SoftGripperGrasp-v11", num_envs=4, action_mode="synergy",
+    >>> envs = gym.make_vec("gripper:SoftGripperGrasp-v12", num_envs=4, action_mode="synergy",
     ...                     vectorization_mode="vector_entry_point")            # doctest: +SKIP
     >>> expert = ScriptedGrasp(envs.unwrapped.config)                          # doctest: +SKIP
     >>> obs, _ = envs.reset(seed=0)                                            # doctest: +SKIP
@@ -35,6 +35,14 @@ CENTRED = 0.002         # m: the palm counts as over the object within this hori
 # rad: a servo set-point past the reel's slack and the fingers' first curl; with the palm above
 # the grasp height it says the grasp is being lifted
 LIFTING_ANGLE = 0.5
+# m: the palm counts as down at the grasp height within this distance above it: 1.5 steps of the
+# palm at full speed, so that DART noise on the demonstrations (σ 0.3 of a step) does not flip the
+# phase (0.5 steps, until 0.22.0, let noise 0.1 start 44 % of the lifts before the fingers gripped)
+LOW_MARGIN = 0.003
+# While the palm is above the grasp height with the servos past LIFTING_ANGLE, the grasp counts as
+# being lifted only if every finger's sensed spool tension is at least this fraction of the grip
+# set-point (a held object keeps the cables taut; fingers closing in the air do not)
+HOLD_TENSION_FRACTION = 0.25
 # The observation parts the script reads besides the palm's and the object's
 SCRIPT_OBSERVES = ("servo_setpoint", "sensed_spool_tension")
 
@@ -80,20 +88,25 @@ class ScriptedGrasp:
         palm_sp = self._part(obs, "palm_setpoint")
         rel = self._part(obs, "object_pos_rel_palm")
         tension = self._part(obs, "sensed_spool_tension")
-        low = palm_sp[:, 2] <= self.z_grasp + 0.5 * self.palm_step
+        low = palm_sp[:, 2] <= self.z_grasp + LOW_MARGIN
         # gripped: every finger's sensed tension at the protocol's set-point (the benchmark's
         # controller), or the servos at the closing angle; lifting: the fingers closed and the palm
         # above the grasp height (stateless: the observation alone tells the phase)
         gripped = (tension.min(axis=1) >= HELD.grip_tension) | (servo_sp >= CLOSE_ANGLE - 1e-6)
-        closed = gripped | (~low & (servo_sp >= LIFTING_ANGLE))
+        taut = tension.min(axis=1) >= HOLD_TENSION_FRACTION * HELD.grip_tension
+        closed = gripped | (~low & (servo_sp >= LIFTING_ANGLE) & taut)
         a = np.zeros((len(obs), self.cfg.action_size), dtype=np.float32)
-        # servo: close at the protocol's rate once the palm is down, then hold
+        # servo: close at the protocol's rate once the palm is down; then hold the grip as the
+        # benchmark's tension controller does, reeling in again whenever a finger's sensed tension
+        # falls below the set-point (holding the set-point still, as until 0.22.0, let DART noise
+        # of 0.1 drift the spools back 0.14 rad within 12 steps of the lift and drop the block)
         close = np.clip((CLOSE_ANGLE - servo_sp) / self.servo_step, 0.0, self.close_action)
-        a[:, :self.n_servo] = np.where(low & ~closed, close, 0.0)[:, None]
-        # palm: down to the grasp height before the fingers close, up to home after
+        slack = tension.min(axis=1) < HELD.grip_tension
+        a[:, :self.n_servo] = np.where((low & ~closed) | (closed & slack), close, 0.0)[:, None]
+        # palm: to the grasp height (and kept there) until the fingers grip, up to home after
         down = np.clip((self.z_grasp - palm_sp[:, 2]) / self.palm_step, -1.0, 1.0)
         up = np.clip((self.z_top - palm_sp[:, 2]) / self.palm_step, 0.0, 1.0)
-        a[:, self.n_servo] = np.where(closed, up, np.where(low, 0.0, down))
+        a[:, self.n_servo] = np.where(closed, up, down)
         if self.cfg.xy_actions:  # over the object while the fingers are open
             xy = np.clip(rel[:, :2] / self.palm_step, -1.0, 1.0)
             centred = np.hypot(rel[:, 0], rel[:, 1]) < CENTRED

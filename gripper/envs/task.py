@@ -27,6 +27,7 @@ from gripper.envs.config import (
     HELD,
     IDENTITY_QUAT,
     OBSERVATION_SCALES,
+    OPPOSING_ANGLE,
     REACH_SCALE,
     START_CLEARANCE,
     TIP_FLOOR_CLEARANCE,
@@ -112,6 +113,10 @@ class Scene:
         self.z_start = obj.height + drive.finger_length + START_CLEARANCE - self.home
         self.z_max = 0.0  # the lift's home: palm face at params.lift.home_height
         self.servo_max = float(m.actuator_ctrlrange[self.servo[0], 1])
+        # finger pairs that oppose each other across the palm (azimuths 2πk/n apart by >= OPPOSING_ANGLE)
+        gap = lambda i, j: abs(math.remainder(2.0 * math.pi * (i - j) / nf, 2.0 * math.pi))  # noqa: E731
+        self.opposing = np.array([(i, j) for i in range(nf) for j in range(i + 1, nf) if gap(i, j) >= OPPOSING_ANGLE],
+                                 dtype=int).reshape(-1, 2)
         self.free_q = (m.jnt_qposadr[m.joint("object_free").id]
                        if mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, "object_free") >= 0 else -1)
         self.nominal_mass = m.body_mass.copy()
@@ -306,7 +311,12 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     reach = math.dist(rel, (0.0, 0.0, -0.5 * s.drive.finger_length))  # to the grasp point
     i = struct["finger_object_force"][0]
     finger = obs[i:i + cfg.n_fingers]  # each finger's normal force on the object, all element faces
-    touching = float(np.count_nonzero(finger > CONTACT_FORCE)) / cfg.n_fingers
+    pressing = finger > CONTACT_FORCE
+    # contact: the fraction of fingers pressing, counted only when two opposing fingers press
+    opposed = bool((pressing[s.opposing[:, 0]] & pressing[s.opposing[:, 1]]).any()) if len(s.opposing) else False
+    touching = float(np.count_nonzero(pressing)) / cfg.n_fingers if opposed else 0.0
+    near = 1.0 - math.tanh(reach / REACH_SCALE)
+    openness = 1.0 - float(np.mean(d.ctrl[s.servo])) / s.servo_max
     # damage: the object's own criterion where it can be read at every step
     if s.obj.kind in STRAIN_DAMAGE_KINDS:
         ep.peak_strain = max(ep.peak_strain, s.probe.edge_strain(d))
@@ -327,8 +337,8 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     is_success = held_s >= cfg.success_hold_s - 1e-9
     w = cfg.weights
     terms = {
-        "reward_reach": w["reach"] * (1.0 - math.tanh(reach / REACH_SCALE)),
-        "reward_contact": w["contact"] * touching,
+        "reward_reach": w["reach"] * near * openness,
+        "reward_contact": w["contact"] * near * touching,
         "reward_lift": w["lift"] * min(1.0, max(0.0, height / HELD.success_height)),
         "reward_success": w["success"] * float(is_success),
         "reward_damage": -w["damage"] * float(newly_damaged),

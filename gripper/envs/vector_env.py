@@ -1,7 +1,7 @@
-"""Native vector environment of ``SoftGripperGrasp-v11``: N simulations stepped together by one
+"""Native vector environment of ``SoftGripperGrasp-v12``: N simulations stepped together by one
 ``mujoco.rollout`` call per control step, on MuJoCo's own thread pool.
 
-Created by ``gymnasium.make_vec("gripper:SoftGripperGrasp-v11", num_envs=N,
+Created by ``gymnasium.make_vec("gripper:SoftGripperGrasp-v12", num_envs=N,
 vectorization_mode="vector_entry_point")``. Slot ``i`` of a vector environment reset with seed
 ``s`` runs exactly the episode of a single environment reset with seed ``s + i`` (Gymnasium's
 convention for seeded vector resets), observation for observation.
@@ -12,7 +12,7 @@ and returns the new episode's first observation.
 
 Example:
     >>> import gymnasium as gym
-    >>> envs = gym.make_vec("gripper:SoftGripperGrasp-v11", num_envs=4,
+    >>> envs = gym.make_vec("gripper:SoftGripperGrasp-v12", num_envs=4,
     ...                     vectorization_mode="vector_entry_point")          # doctest: +SKIP
     >>> obs, info = envs.reset(seed=0)                                       # doctest: +SKIP
 """

@@ -7,7 +7,7 @@ Example:
     >>> TrainConfig(algo="dqn").validate()
     Traceback (most recent call last):
     ...
-    ValueError: algo: must be one of ppo, sac, got 'dqn'
+    ValueError: algo: must be one of ppo, sac, tqc, got 'dqn'
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from typing import Any
 from gripper.core.fields import Validated
 from gripper.envs.registration import MAX_EPISODE_STEPS
 
-ALGOS = ("ppo", "sac")
+ALGOS = ("ppo", "sac", "tqc")
 # First seed of the evaluation episodes. Each training chunk seeds its envs' generators with a
 # hash of (seed, chunk) in [0, 2^31) (slot i: hash + i) and draws every later episode from them,
 # so a run of 16 chunks x 8 envs shares one of 50 evaluation seeds with probability ~3e-6.
@@ -31,7 +31,9 @@ class TrainConfig(Validated):
     """A training run of ``SoftGripperGrasp`` with Stable-Baselines3.
 
     Attributes:
-        algo: ``"ppo"`` or ``"sac"``.
+        algo: ``"ppo"``, ``"sac"`` or ``"tqc"`` (sb3-contrib's truncated quantile critics).
+        goal_conditioned: train on ``SoftGripperGraspGoal`` (dict observations, a lift target);
+            SAC and TQC then replay hindsight goals (SB3's ``HerReplayBuffer``).
         objects: objects sampled per episode (library names).
         action_mode: ``"synergy"`` (one servo command and the lift) or ``"fingers"``.
         xy_actions: add the palm's x/y velocity actions.
@@ -55,6 +57,7 @@ class TrainConfig(Validated):
     """
 
     algo: str = "ppo"
+    goal_conditioned: bool = False
     # The task variant: the environment's own arguments (each declared, with its allowed values,
     # in gripper.envs.config.EnvConfig, which validates them here). The baselines' task closes
     # all fingers with one command (the synergy), where a bare environment gives each its own.
@@ -82,6 +85,11 @@ class TrainConfig(Validated):
         # the task variant's arguments, checked where they are declared
         EnvConfig(objects=tuple(self.objects), action_mode=self.action_mode, xy_actions=self.xy_actions,
                   reward_weights=dict(self.reward_weights)).validate()
+        if not isinstance(self.goal_conditioned, bool):
+            raise ValueError(f"goal_conditioned: must be true or false, got {self.goal_conditioned!r}")
+        if self.goal_conditioned and self.demo_episodes:
+            raise ValueError("demo_episodes: the goal-conditioned task learns without demonstrations "
+                             "(hindsight goals instead); give 0")
         for name, lo in (("steps", 1), ("seed", 0), ("n_envs", 1), ("chunk_steps", 1), ("eval_episodes", 1),
                          ("max_episode_steps", 1)):
             v = getattr(self, name)
@@ -98,10 +106,20 @@ class TrainConfig(Validated):
         from gripper.rl.hyperparams import hyperparams_for
 
         hp = hyperparams_for(self.algo, self.hyperparams)  # raises on an unknown or bad override
+        if not self.demo_episodes and (hp.get("bc_weight", 0.0) > 0 or hp.get("critic_warmup", 0) > 0):
+            raise ValueError("hyperparams.bc_weight, hyperparams.critic_warmup: need demonstrations "
+                             "(demo_episodes >= 1)")
+        if hp.get("bc_decay", 1.0) > 1.0:
+            raise ValueError(f"hyperparams.bc_decay: must be in [0, 1], got {hp['bc_decay']!r}")
         if self.demo_episodes and hp["normalize"]:
             raise ValueError("demo_episodes: behaviour cloning needs hyperparams.normalize = false "
                              "(the environment scales its observations itself)")
         return self
+
+    def env_id(self) -> str:
+        """The registered environment this run trains on."""
+        from gripper.envs.registration import ENV_ID, GOAL_ENV_ID
+        return GOAL_ENV_ID if self.goal_conditioned else ENV_ID
 
     def env_kwargs(self) -> dict[str, Any]:
         """Keyword arguments of ``SoftGripperGrasp`` for this task variant."""

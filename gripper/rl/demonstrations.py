@@ -175,7 +175,7 @@ def pretrain(model, demo: Demonstrations, seed: int, epochs: int = BC_EPOCHS) ->
             opt.zero_grad()
             loss.backward()
             opt.step()
-            sums += [float(a_loss) * len(idx), float(v_loss) * len(idx)]
+            sums += [float(a_loss.detach()) * len(idx), float(v_loss.detach()) * len(idx)]
         losses = {"bc_action_mse": sums[0] / n, **({"bc_value_mse": sums[1] / n} if ppo else {})}
     policy.set_training_mode(False)
     return losses

@@ -24,26 +24,30 @@ from gripper.rl.config import EVAL_SEED
 BATCH = 50  # episodes stepped together at most
 
 
-def make_eval_env(env_kwargs: dict[str, Any], episodes: int):
-    """A native vector env with one slot per episode of a batch (one MuJoCo thread)."""
+def make_eval_env(env_kwargs: dict[str, Any], episodes: int, env_id: str | None = None):
+    """A native vector env of ``env_id`` (default ``SoftGripperGrasp``) with one slot per episode
+    of a batch (one MuJoCo thread)."""
     import gymnasium as gym
 
     from gripper.envs.registration import ENV_ID
 
-    return gym.make_vec(f"gripper:{ENV_ID}", num_envs=min(BATCH, episodes), vectorization_mode="vector_entry_point",
-                        nthread=1, **env_kwargs)
+    return gym.make_vec(f"gripper:{env_id or ENV_ID}", num_envs=min(BATCH, episodes),
+                        vectorization_mode="vector_entry_point", nthread=1, **env_kwargs)
 
 
-def evaluate_policy(act: Callable[[np.ndarray], np.ndarray], env_kwargs: dict[str, Any], episodes: int = 50,
-                    first_seed: int = EVAL_SEED, venv=None) -> dict[str, Any]:
+def evaluate_policy(act: Callable[[Any], np.ndarray], env_kwargs: dict[str, Any], episodes: int = 50,
+                    first_seed: int = EVAL_SEED, venv=None, env_id: str | None = None) -> dict[str, Any]:
     """Run ``episodes`` episodes (seeds ``first_seed`` on) with ``act`` (a batch of observations
     to a batch of actions); return the success rate, the rate per object and the mean return.
 
-    ``venv``: a vector env from :func:`make_eval_env` to reuse (built and closed here if None).
+    ``venv``: a vector env from :func:`make_eval_env` to reuse (built and closed here if None,
+    of ``env_id``). In the goal-conditioned env an episode succeeds when its goal is met at its
+    last step (Gymnasium-Robotics' rule), elsewhere when the grasp was held at some step.
     """
     own = venv is None
     if own:
-        venv = make_eval_env(env_kwargs, episodes)
+        venv = make_eval_env(env_kwargs, episodes, env_id)
+    final_step = hasattr(venv, "compute_reward")  # a goal-conditioned env: Fetch's rule
     n = venv.num_envs
     success: list[bool] = []
     objects: list[str] = []
@@ -60,7 +64,8 @@ def evaluate_policy(act: Callable[[np.ndarray], np.ndarray], env_kwargs: dict[st
             while alive.any():
                 obs, reward, term, trunc, info = venv.step(np.asarray(act(obs)))
                 ret += np.where(alive, reward, 0.0)
-                held |= alive & np.asarray(info.get("is_success", np.zeros(n, dtype=bool)), dtype=bool)
+                now = np.asarray(info.get("is_success", np.zeros(n, dtype=bool)), dtype=bool)
+                held = np.where(alive, now, held) if final_step else held | (alive & now)
                 alive &= ~(term | trunc)
             success += held[:k].tolist()
             objects += obj[:k]

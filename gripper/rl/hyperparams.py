@@ -37,6 +37,12 @@ PPO_HYPERPARAMS: dict[str, Any] = {
     "log_std_init": 0.0,     # SB3 default
     "ortho_init": True,      # SB3 default
     "normalize": False,      # VecNormalize off: the environment scales observations and rewards (v7)
+    # Learning from demonstrations (gripper.rl.demo_regulariser; with --demos only): the weight
+    # of the behaviour-cloning term in each update's loss, its decay per update, and the updates
+    # at the start during which only the critic learns. 0: off (plain PPO after cloning)
+    "bc_weight": 0.0,
+    "bc_decay": 1.0,
+    "critic_warmup": 0,
 }
 
 SAC_HYPERPARAMS: dict[str, Any] = {
@@ -53,11 +59,32 @@ SAC_HYPERPARAMS: dict[str, Any] = {
     "normalize": False,      # as PPO's (True: VecNormalize on observations only)
 }
 
-HYPERPARAMS = {"ppo": PPO_HYPERPARAMS, "sac": SAC_HYPERPARAMS}
+# TQC (sb3-contrib): SAC's values plus its own (sb3-contrib's defaults); with a goal-conditioned
+# task both replay hindsight goals (HER, Andrychowicz et al., 2017: 4 goals per transition from
+# the episode's future, the paper's best strategy)
+TQC_HYPERPARAMS: dict[str, Any] = {
+    **SAC_HYPERPARAMS,
+    "top_quantiles_to_drop_per_net": 2,  # sb3-contrib default
+    "n_quantiles": 25,       # sb3-contrib default
+    "n_critics": 2,          # sb3-contrib default
+}
+HER_SAMPLED_GOALS = 4  # hindsight goals per real one (the paper's k = 4), strategy "future"
+
+# The recommended recipe (``gripper train --recommended``; docs/environment.md, "Baselines"):
+# PPO from 64 episodes of the scripted grasp with DART noise 0.2 (the demonstrator holds 16 of 16
+# at that noise), cloned, then PPO with exploration noise matched to the demonstrations' (σ =
+# e^-1.6 = 0.2), a critic warm-up of 4 updates (8,192 steps) and a behaviour-cloning term of
+# weight 1 decaying by 1 % per update (0.28 after 128 updates: 262,144 steps)
+RECOMMENDED: dict[str, Any] = {
+    "algo": "ppo", "demo_episodes": 64, "demo_noise": 0.2,
+    "hyperparams": {"log_std_init": -1.6, "bc_weight": 1.0, "bc_decay": 0.99, "critic_warmup": 4},
+}
+
+HYPERPARAMS = {"ppo": PPO_HYPERPARAMS, "sac": SAC_HYPERPARAMS, "tqc": TQC_HYPERPARAMS}
 
 
-POLICY_KWARGS = ("net_arch", "log_std_init", "ortho_init")  # passed in policy_kwargs
-NOT_SB3 = ("normalize",)
+POLICY_KWARGS = ("net_arch", "log_std_init", "ortho_init", "n_quantiles", "n_critics")  # passed in policy_kwargs
+NOT_SB3 = ("normalize", "bc_weight", "bc_decay", "critic_warmup")
 
 
 def _check(name: str, value: Any, default: Any) -> None:

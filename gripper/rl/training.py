@@ -1,5 +1,5 @@
-"""Train PPO or SAC on ``SoftGripperGrasp`` through the native vector env: chunked, logged,
-checkpointed and resumable.
+"""Train PPO, SAC or TQC on ``SoftGripperGrasp`` (or its goal-conditioned variant) through the
+native vector env: chunked, logged, checkpointed and resumable.
 
 A run folder holds:
 
@@ -66,18 +66,30 @@ def _versions() -> dict:
     return {**versions(), "stable_baselines3": stable_baselines3.__version__, "torch": torch.__version__}
 
 
-def _build(cfg: TrainConfig, hp: dict, venv):
+def algorithm_class(algo: str):
+    """The SB3 (or sb3-contrib) class of ``algo``."""
+    if algo == "tqc":
+        from sb3_contrib import TQC
+        return TQC
     from stable_baselines3 import PPO, SAC
+    return PPO if algo == "ppo" else SAC
 
-    from gripper.rl.hyperparams import NOT_SB3, POLICY_KWARGS
+
+def _build(cfg: TrainConfig, hp: dict, venv):
+    from gripper.rl.hyperparams import HER_SAMPLED_GOALS, NOT_SB3, POLICY_KWARGS
 
     kw = {k: v for k, v in hp.items() if k not in POLICY_KWARGS + NOT_SB3}
     pk = {k: hp[k] for k in POLICY_KWARGS if k in hp}
+    policy = "MultiInputPolicy" if cfg.goal_conditioned else "MlpPolicy"
     if cfg.algo == "ppo":
         pk["net_arch"] = {"pi": list(hp["net_arch"]), "vf": list(hp["net_arch"])}
-        return PPO("MlpPolicy", venv, seed=cfg.seed, device="cpu", verbose=0, policy_kwargs=pk, **kw)
-    pk["net_arch"] = list(hp["net_arch"])
-    return SAC("MlpPolicy", venv, seed=cfg.seed, device="cpu", verbose=0, policy_kwargs=pk, **kw)
+    else:
+        pk["net_arch"] = list(hp["net_arch"])
+        if cfg.goal_conditioned:
+            from stable_baselines3 import HerReplayBuffer
+            kw["replay_buffer_class"] = HerReplayBuffer
+            kw["replay_buffer_kwargs"] = {"n_sampled_goal": HER_SAMPLED_GOALS, "goal_selection_strategy": "future"}
+    return algorithm_class(cfg.algo)(policy, venv, seed=cfg.seed, device="cpu", verbose=0, policy_kwargs=pk, **kw)
 
 
 def _make_venv(cfg: TrainConfig, hp: dict):
@@ -85,15 +97,16 @@ def _make_venv(cfg: TrainConfig, hp: dict):
 
     from gripper.envs.sb3 import make_sb3_vec_env
 
-    venv: Any = make_sb3_vec_env(num_envs=cfg.n_envs, nthread=1, **cfg.env_kwargs())
+    venv: Any = make_sb3_vec_env(num_envs=cfg.n_envs, env_id=cfg.env_id(), nthread=1, **cfg.env_kwargs())
     if hp["normalize"]:
         venv = VecNormalize(venv, norm_obs=True, norm_reward=cfg.algo == "ppo", gamma=hp["gamma"])
     return venv
 
 
-def episode_log(n_envs: int):
-    """An SB3 callback that keeps, for each training episode ending in a chunk, whether the
-    grasp was held at some step and its return (``.done``: a list of (held, return))."""
+def episode_log(n_envs: int, final_step: bool = False):
+    """An SB3 callback that keeps, for each training episode ending in a chunk, whether it
+    succeeded (the grasp held at some step; with ``final_step``, the goal met at its last step)
+    and its return (``.done``: a list of (success, return))."""
     from stable_baselines3.common.callbacks import BaseCallback
 
     class EpisodeLog(BaseCallback):
@@ -107,7 +120,8 @@ def episode_log(n_envs: int):
             infos, dones = self.locals["infos"], self.locals["dones"]
             env = self.training_env
             self.ret += env.get_original_reward() if hasattr(env, "get_original_reward") else self.locals["rewards"]
-            self.held |= np.array([bool(i.get("is_success", False)) for i in infos])
+            now = np.array([bool(i.get("is_success", False)) for i in infos])
+            self.held = now if final_step else self.held | now
             for i in np.flatnonzero(dones):
                 self.done.append((bool(self.held[i]), float(self.ret[i])))
                 self.ret[i], self.held[i] = 0.0, False
@@ -171,7 +185,6 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
 
 def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[dict], None] | None) -> list[dict]:
     import torch
-    from stable_baselines3 import PPO, SAC
     from stable_baselines3.common.vec_env import VecNormalize
 
     cfg = cfg.validate()
@@ -204,9 +217,8 @@ def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[
         if norm is not None:
             stats = VecNormalize.load(str(path.with_name(path.stem + "_" + NORM_FILE)), norm.venv)
             norm.obs_rms, norm.ret_rms = stats.obs_rms, stats.ret_rms
-        cls: Any = PPO if cfg.algo == "ppo" else SAC
-        model: Any = cls.load(str(path), env=venv, device="cpu")
-        if cfg.algo == "sac":
+        model: Any = algorithm_class(cfg.algo).load(str(path), env=venv, device="cpu")
+        if cfg.algo != "ppo":
             model.load_replay_buffer(str(ckpt_dir / "replay_buffer.pkl"))
         rows = [r for r in _read_progress(prog_path) if r["steps"] <= done_steps]
     else:
@@ -214,7 +226,7 @@ def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[
         model = _build(cfg, hp, venv)
     from gripper.rl.evaluation import evaluate_policy, make_eval_env
 
-    eval_env = make_eval_env(cfg.env_kwargs(), cfg.eval_episodes)
+    eval_env = make_eval_env(cfg.env_kwargs(), cfg.eval_episodes, cfg.env_id())
     columns = COLUMNS + [f"eval_{o}" for o in sorted(set(cfg.objects))] + (
         ["demo_steps"] if cfg.demo_episodes else [])
     t_wall = rows[-1]["wall_s"] if rows else 0.0
@@ -233,21 +245,35 @@ def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[
         model.save(str(path))
         if norm is not None:
             norm.save(str(path.with_name(path.stem + "_" + NORM_FILE)))
-        if cfg.algo == "sac":
+        if cfg.algo != "ppo":
             model.save_replay_buffer(str(ckpt_dir / "replay_buffer.pkl"))
 
+    regulariser = None
     try:
-        if cfg.demo_episodes and latest is None:
-            # behaviour cloning from the scripted grasp (gripper.rl.demonstrations), evaluated
-            # and checkpointed as step 0; the demonstrations' own outcome is the row's training part
-            from gripper.rl.demonstrations import collect_demonstrations, fill_replay_buffer, pretrain
+        regularised = cfg.algo == "ppo" and (hp["bc_weight"] > 0 or hp["critic_warmup"] > 0)
+        if cfg.demo_episodes and (latest is None or regularised):
+            # the demonstrations: seeded by the run's seed, so a resumed run collects them again
+            # bitwise (its regulariser draws from them)
+            from gripper.rl.demonstrations import collect_demonstrations
 
             t0 = time.perf_counter()
             demo = collect_demonstrations(cfg.env_kwargs(), cfg.demo_episodes, cfg.demo_noise, cfg.seed,
                                           n_envs=cfg.n_envs)
+            t_wall += time.perf_counter() - t0 if latest is None else 0.0
+        if regularised:
+            from gripper.rl.demo_regulariser import DemoRegulariser
+
+            regulariser = DemoRegulariser(model, demo, weight=hp["bc_weight"], decay=hp["bc_decay"],
+                                          critic_warmup=hp["critic_warmup"], seed=chunk_seed(cfg.seed, 2**31 + 1))
+        if cfg.demo_episodes and latest is None:
+            # behaviour cloning from the scripted grasp (gripper.rl.demonstrations), evaluated
+            # and checkpointed as step 0; the demonstrations' own outcome is the row's training part
+            from gripper.rl.demonstrations import fill_replay_buffer, pretrain
+
+            t0 = time.perf_counter()
             demo_steps = demo.steps
             pretrain(model, demo, seed=chunk_seed(cfg.seed, 2**31))
-            if cfg.algo == "sac":
+            if cfg.algo != "ppo":
                 fill_replay_buffer(model, demo)
             ev = evaluate_policy(deterministic_policy(model, norm), cfg.env_kwargs(), cfg.eval_episodes,
                                  EVAL_SEED, venv=eval_env)
@@ -270,7 +296,7 @@ def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[
             if norm is not None:
                 model._last_original_obs = norm.get_original_obs()
             model._last_episode_starts = np.ones(cfg.n_envs, dtype=bool)
-            log = episode_log(cfg.n_envs)
+            log = episode_log(cfg.n_envs, final_step=cfg.goal_conditioned)
             model.learn(chunk, reset_num_timesteps=False, callback=log, progress_bar=False)
             done_steps = model.num_timesteps
             if norm is not None:
@@ -293,6 +319,8 @@ def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[
         if norm is not None:
             norm.save(str(out / NORM_FILE))
     finally:
+        if regulariser is not None:
+            regulariser.remove()
         eval_env.close()
         venv.close()
     return rows
@@ -308,13 +336,11 @@ def _run_config(path: Path) -> dict:
 
 def load_policy(run: str | Path) -> tuple[TrainConfig, Callable[[np.ndarray], np.ndarray]]:
     """A run folder's config and its final policy as a deterministic ``act(obs batch)``."""
-    from stable_baselines3 import PPO, SAC
-
     run = Path(run)
     if not (run / CONFIG_FILE).exists() or not (run / POLICY_FILE).exists():
         raise ValueError(f"--run: {run} holds no trained policy ({CONFIG_FILE} and {POLICY_FILE})")
     cfg = TrainConfig.from_json(_run_config(run / CONFIG_FILE))
-    model = (PPO if cfg.algo == "ppo" else SAC).load(str(run / POLICY_FILE), device="cpu")
+    model = algorithm_class(cfg.algo).load(str(run / POLICY_FILE), device="cpu")
     norm = None
     if (run / NORM_FILE).exists():
         import pickle

@@ -16,7 +16,7 @@ import numpy as np
 
 import gripper  # noqa: F401
 
-ENV_ID = "gripper:SoftGripperGrasp-v11"
+ENV_ID = "gripper:SoftGripperGrasp-v12"
 
 
 def steps_per_second(env, steps, n_envs, seed=0) -> float:

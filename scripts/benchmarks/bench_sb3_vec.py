@@ -22,7 +22,7 @@ from stable_baselines3.common.vec_env import SubprocVecEnv
 import gripper  # noqa: F401  (registers the environment)
 from gripper.envs.sb3 import make_sb3_vec_env
 
-ENV_ID = "gripper:SoftGripperGrasp-v11"
+ENV_ID = "gripper:SoftGripperGrasp-v12"
 
 
 def rate(venv, steps: int, seed: int = 0) -> float:

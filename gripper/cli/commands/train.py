@@ -1,4 +1,4 @@
-"""``gripper train``: train PPO or SAC on the environment."""
+"""``gripper train``: train PPO, SAC or TQC on the environment."""
 
 from __future__ import annotations
 
@@ -19,17 +19,22 @@ from gripper.core.user_files import parse_user_data
 
 def add(sub) -> None:
     from gripper.rl.config import EVAL_SEED, TrainConfig
+    from gripper.rl.hyperparams import RECOMMENDED
 
     tc = TrainConfig()
     tr = sub.add_parser(
-        "train", help="train PPO or SAC on the grasp environment (needs the rl extra)",
-        description="Train Stable-Baselines3 PPO or SAC on SoftGripperGrasp through the native vector "
-                    "env, with the documented hyper-parameters (gripper/rl/hyperparams.py). Every "
+        "train", help="train PPO, SAC or TQC on the grasp environment (needs the rl extra)",
+        description="Train Stable-Baselines3 PPO, SAC or TQC on SoftGripperGrasp (or SoftGripperGraspGoal) "
+                    "through the native vector env, with the documented hyper-parameters "
+                    "(gripper/rl/hyperparams.py). Every "
                     "--chunk-steps it evaluates the deterministic policy on --eval-episodes unseen seeds, "
                     "appends a row to progress.csv and writes a checkpoint; --resume continues from the "
                     "latest one, bitwise as if never stopped. Writes policy.zip at the end.")
-    tr.add_argument("--algo", choices=("ppo", "sac"), default=tc.algo,
-                    help="PPO (on-policy) or SAC (off-policy) (default %(default)s)")
+    tr.add_argument("--algo", choices=("ppo", "sac", "tqc"), default=tc.algo,
+                    help="PPO (on-policy), SAC or TQC (off-policy; TQC from sb3-contrib) (default %(default)s)")
+    tr.add_argument("--goal", action="store_true",
+                    help="the goal-conditioned task (SoftGripperGraspGoal: lift the object to a target); "
+                         "SAC and TQC then replay hindsight goals (HER)")
     tr.add_argument("--objects", default=",".join(tc.objects), help="comma-separated names (default %(default)s)")
     tr.add_argument("--action-mode", choices=("synergy", "fingers"), default=tc.action_mode,
                     help="synergy: one closing command for all fingers; fingers: one per finger "
@@ -42,11 +47,16 @@ def add(sub) -> None:
            help="steps between evaluations and checkpoints")
     number(tr, "--eval-episodes", int, lo=1, hi=TRIALS_MAX, default=tc.eval_episodes,
            help=f"evaluation episodes, seeds from {EVAL_SEED} on")
-    number(tr, "--demos", int, lo=0, hi=10_000, default=tc.demo_episodes,
-           help="episodes of the scripted grasp to clone before RL (SAC also replays them); "
-                "0: none")
-    number(tr, "--demo-noise", float, lo=0.0, hi=1.0, default=tc.demo_noise,
-           help="DART noise on the demonstrations' actions")
+    number(tr, "--demos", int, lo=0, hi=10_000, default=None,
+           help=f"episodes of the scripted grasp to clone before RL (SAC also replays them); "
+                f"0: none (default {tc.demo_episodes}; {RECOMMENDED['demo_episodes']} with --recommended)")
+    number(tr, "--demo-noise", float, lo=0.0, hi=1.0, default=None,
+           help=f"DART noise on the demonstrations' actions (default {tc.demo_noise}; "
+                f"{RECOMMENDED['demo_noise']} with --recommended)")
+    tr.add_argument("--recommended", action="store_true",
+                    help="the recommended recipe: PPO from demonstrations, regularised towards them "
+                         f"({', '.join(f'{k}={v}' for k, v in RECOMMENDED['hyperparams'].items())}); "
+                         "--demos, --demo-noise and --set still override its values")
     tr.add_argument("--set", action="append", metavar="KEY=VALUE",
                     help="override a hyper-parameter, e.g. --set n_epochs=5 (repeatable)")
     tr.add_argument("--reward-weight", action="append", metavar="TERM=W",
@@ -60,12 +70,19 @@ def add(sub) -> None:
 
 def run(args) -> int:
     from gripper.rl.config import TrainConfig
+    from gripper.rl.hyperparams import RECOMMENDED
 
-    cfg = TrainConfig(algo=args.algo, objects=object_specs(args.objects),
+    base = RECOMMENDED if args.recommended else {}
+    if args.recommended and args.algo != "ppo":
+        raise ValueError(f"--recommended: the recipe is PPO's; drop --algo {args.algo}")
+    tc = TrainConfig()
+    demos = args.demos if args.demos is not None else base.get("demo_episodes", tc.demo_episodes)
+    noise = args.demo_noise if args.demo_noise is not None else base.get("demo_noise", tc.demo_noise)
+    cfg = TrainConfig(algo=args.algo, goal_conditioned=args.goal, objects=object_specs(args.objects),
                       action_mode=args.action_mode, xy_actions=args.xy, steps=args.steps, seed=args.seed,
                       n_envs=args.n_envs, chunk_steps=args.chunk_steps, eval_episodes=args.eval_episodes,
-                      demo_episodes=args.demos, demo_noise=args.demo_noise,
-                      hyperparams=_hyperparam_overrides(args.set),
+                      demo_episodes=demos, demo_noise=noise,
+                      hyperparams={**base.get("hyperparams", {}), **_hyperparam_overrides(args.set)},
                       reward_weights=_hyperparam_overrides(args.reward_weight, "--reward-weight")).validate()
     from gripper.rl.training import RUN_FILES as TRAIN_FILES
 
@@ -74,7 +91,7 @@ def run(args) -> int:
         from gripper.render.video import VIDEO_SUFFIXES
 
         check_output_file(args.video, "--video", VIDEO_SUFFIXES)
-    needs_rl("train")
+    needs_rl("train", contrib=cfg.algo == "tqc")
     from gripper.rl.training import train
 
     def show(row):
