@@ -171,3 +171,25 @@ def test_critic_warmup_freezes_the_actor_and_the_bc_term_pulls_towards_the_label
     assert mse() < before
     reg.remove()
     venv.close()
+
+
+def test_committed_curves_are_of_todays_recipe():
+    """The learning curves in docs/rl (scripts/rl_table.py's input) were trained with today's
+    hyper-parameters: each run's table is today's defaults with its own overrides, and the
+    recommended recipe's runs are ``--recommended``'s. A changed default or recipe makes them
+    stale: retrain with the commands in docs/environment.md ("Baselines")."""
+    from pathlib import Path
+
+    from gripper.rl.hyperparams import RECOMMENDED
+
+    runs = sorted((Path(__file__).parent.parent / "docs" / "rl").glob("*/config.json"))
+    assert runs, "no committed curves"
+    for path in runs:
+        data = json.loads(path.read_text())
+        cfg = TrainConfig.from_json(data["config"])
+        assert data["hyperparams"] == hyperparams_for(cfg.algo, cfg.hyperparams), path
+        if path.parent.name.startswith("recommended"):
+            assert (cfg.algo, cfg.demo_episodes, cfg.demo_noise, cfg.hyperparams) == (
+                RECOMMENDED["algo"], RECOMMENDED["demo_episodes"], RECOMMENDED["demo_noise"],
+                RECOMMENDED["hyperparams"]), path
+        assert (path.parent / "progress.csv").exists()

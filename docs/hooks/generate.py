@@ -83,11 +83,24 @@ def _depth_camera_table() -> str:
 
 
 def _rl_hyperparams() -> str:
-    from gripper.rl.hyperparams import PPO_HYPERPARAMS, SAC_HYPERPARAMS
+    from gripper.rl.hyperparams import (
+        HER_SAMPLED_GOALS,
+        PPO_HYPERPARAMS,
+        RECOMMENDED,
+        SAC_HYPERPARAMS,
+        TQC_HYPERPARAMS,
+    )
 
-    lines = ["| hyper-parameter | PPO | SAC |", "|---|---|---|"]
-    for k in dict.fromkeys([*PPO_HYPERPARAMS, *SAC_HYPERPARAMS]):
-        lines.append(f"| {k} | {PPO_HYPERPARAMS.get(k, '')} | {SAC_HYPERPARAMS.get(k, '')} |")
+    recipe = {**PPO_HYPERPARAMS, **RECOMMENDED["hyperparams"]}
+    lines = ["| hyper-parameter | PPO | PPO, recommended recipe (`--recommended`) | SAC | TQC (+ HER with `--goal`) |",
+             "|---|---|---|---|---|"]
+    for k in dict.fromkeys([*PPO_HYPERPARAMS, *SAC_HYPERPARAMS, *TQC_HYPERPARAMS]):
+        lines.append(f"| {k} | {PPO_HYPERPARAMS.get(k, '')} | {recipe.get(k, '')} | {SAC_HYPERPARAMS.get(k, '')} "
+                     f"| {TQC_HYPERPARAMS.get(k, '')} |")
+    lines.append(f"| demonstrations (`--demos`, `--demo-noise`) | 0 | {RECOMMENDED['demo_episodes']} episodes, "
+                 f"DART noise {RECOMMENDED['demo_noise']} | 0 | none |")
+    lines.append(f"| hindsight goals (with `--goal`) | | | {HER_SAMPLED_GOALS} per transition, \"future\" "
+                 f"| {HER_SAMPLED_GOALS} per transition, \"future\" |")
     return "\n".join(lines)
 
 

@@ -55,7 +55,7 @@ def goal_scale(cfg: EnvConfig) -> float:
     return OBSERVATION_SCALES["object_pos_rel_palm"][0] if cfg.scale_observations else 1.0
 
 
-def goal_space(cfg: EnvConfig, observation: spaces.Box) -> spaces.Dict:
+def goal_space(cfg: EnvConfig, observation: spaces.Space) -> spaces.Dict:
     goal = spaces.Box(-np.inf, np.inf, (3,), np.float64)
     return spaces.Dict({"observation": observation, "achieved_goal": goal, "desired_goal": goal})
 
@@ -85,7 +85,7 @@ class SoftGripperGraspGoalEnv(SoftGripperGraspEnv):
     def __init__(self, **kwargs: Any):
         kwargs.setdefault("reward_type", "sparse")
         super().__init__(**kwargs)
-        self.observation_space = goal_space(self.config, self.observation_space)  # type: ignore[assignment]
+        self.observation_space = goal_space(self.config, self.observation_space)
         self._scale = goal_scale(self.config)
         self._goal = np.zeros(3)
 
@@ -130,7 +130,7 @@ class SoftGripperGraspGoalVectorEnv(SoftGripperGraspVectorEnv):
     def __init__(self, **kwargs: Any):
         kwargs.setdefault("reward_type", "sparse")
         super().__init__(**kwargs)
-        self.single_observation_space = goal_space(self.config, self.single_observation_space)  # type: ignore[assignment]
+        self.single_observation_space = goal_space(self.config, self.single_observation_space)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self._scale = goal_scale(self.config)
         self._goals = np.zeros((self.num_envs, 3))

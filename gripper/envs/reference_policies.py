@@ -73,8 +73,9 @@ def reference_policy(name: str, config: EnvConfig) -> Callable[[np.ndarray], np.
         a[:, k] = np.minimum(a[:, k], 0.0)  # never lifts
         return a
 
-    return {"idle": idle, "hover_closed": hover_closed, "hover_open": hover_open, "touch": touch,
-            "hold": script}[name]
+    policies: dict[str, Callable[[np.ndarray], np.ndarray]] = {
+        "idle": idle, "hover_closed": hover_closed, "hover_open": hover_open, "touch": touch, "hold": script}
+    return policies[name]
 
 
 # v11's dense reward (0.21.0), recomputed from a v12 step for the side-by-side table: reach paid
