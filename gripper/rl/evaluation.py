@@ -24,15 +24,15 @@ from gripper.rl.config import EVAL_SEED
 BATCH = 50  # episodes stepped together at most
 
 
-def make_eval_env(env_kwargs: dict[str, Any], episodes: int, env_id: str | None = None):
+def make_eval_env(env_kwargs: dict[str, Any], episodes: int, env_id: str | None = None, nthread: int = 1):
     """A native vector env of ``env_id`` (default ``SoftGripperGrasp``) with one slot per episode
-    of a batch (one MuJoCo thread)."""
+    of a batch (``nthread`` MuJoCo threads)."""
     import gymnasium as gym
 
     from gripper.envs.registration import ENV_ID
 
     return gym.make_vec(f"gripper:{env_id or ENV_ID}", num_envs=min(BATCH, episodes),
-                        vectorization_mode="vector_entry_point", nthread=1, **env_kwargs)
+                        vectorization_mode="vector_entry_point", nthread=nthread, **env_kwargs)
 
 
 def evaluate_policy(act: Callable[[Any], np.ndarray], env_kwargs: dict[str, Any], episodes: int = 50,

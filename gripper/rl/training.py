@@ -92,12 +92,13 @@ def _build(cfg: TrainConfig, hp: dict, venv):
     return algorithm_class(cfg.algo)(policy, venv, seed=cfg.seed, device="cpu", verbose=0, policy_kwargs=pk, **kw)
 
 
-def _make_venv(cfg: TrainConfig, hp: dict):
+def _make_venv(cfg: TrainConfig, hp: dict, nthread: int):
     from stable_baselines3.common.vec_env import VecNormalize
 
     from gripper.envs.sb3 import make_sb3_vec_env
 
-    venv: Any = make_sb3_vec_env(num_envs=cfg.n_envs, env_id=cfg.env_id(), nthread=1, **cfg.env_kwargs())
+    venv: Any = make_sb3_vec_env(num_envs=cfg.n_envs, env_id=cfg.env_id(), nthread=nthread,
+                                 **cfg.env_kwargs())
     if hp["normalize"]:
         venv = VecNormalize(venv, norm_obs=True, norm_reward=cfg.algo == "ppo", gamma=hp["gamma"])
     return venv
@@ -130,6 +131,28 @@ def episode_log(n_envs: int, final_step: bool = False):
     return EpisodeLog()
 
 
+def _end_cut_episodes(model) -> None:
+    """Close, in a HER replay buffer, the episodes the chunk's end cut (the next chunk starts
+    from a reset), as SB3 closes them when it loads a buffer: so that the run that never stopped
+    samples from the same buffer as one resumed from this checkpoint."""
+    import warnings
+
+    from stable_baselines3 import HerReplayBuffer
+
+    buf = getattr(model, "replay_buffer", None)
+    if isinstance(buf, HerReplayBuffer):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # "the last trajectory ... will be truncated"
+            buf.truncate_last_trajectory()
+
+
+def load_model(path: str | Path, algo: str):
+    """A saved model of ``algo`` for acting (an off-policy one without its replay buffer: HER's
+    would need the environment)."""
+    custom = {} if algo == "ppo" else {"replay_buffer_class": None, "replay_buffer_kwargs": {}, "buffer_size": 1}
+    return algorithm_class(algo).load(str(path), device="cpu", custom_objects=custom)
+
+
 def _read_progress(path: Path) -> list[dict]:
     if not path.exists():
         return []
@@ -154,11 +177,14 @@ def _latest_checkpoint(folder: Path) -> tuple[int, Path] | None:
 
 
 def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
-          on_progress: Callable[[dict], None] | None = None) -> list[dict]:
+          on_progress: Callable[[dict], None] | None = None, nthread: int = 1) -> list[dict]:
     """Train ``cfg`` into the run folder ``out``; return the progress rows.
 
     ``resume``: continue the run in ``out`` from its latest checkpoint (its config must equal
-    ``cfg``). Without it, ``out`` must not hold a run already.
+    ``cfg``). Without it, ``out`` must not hold a run already. ``nthread``: MuJoCo threads of
+    the training and evaluation envs (each slot is simulated alone, so the curve is bitwise the
+    same for any number; 2 on 2 free cores steps a grasp about 1.2 times as fast as 1,
+    ``docs/environment.md``, "Cheaper steps").
 
     Raises:
         ValueError: a bad config, a folder that holds another run (or none to resume), a
@@ -173,7 +199,7 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
     out.mkdir(parents=True, exist_ok=True)
     try:
         with folder_lock(out):
-            return _train(cfg, out, resume=resume, on_progress=on_progress)
+            return _train(cfg, out, resume=resume, on_progress=on_progress, nthread=nthread)
     finally:
         if made and not (out / CONFIG_FILE).exists():  # refused before it began: leave nothing
             (out / LOCK_FILE).unlink(missing_ok=True)
@@ -183,7 +209,8 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
                 pass
 
 
-def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[dict], None] | None) -> list[dict]:
+def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[dict], None] | None,
+           nthread: int) -> list[dict]:
     import torch
     from stable_baselines3.common.vec_env import VecNormalize
 
@@ -208,7 +235,9 @@ def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[
 
     torch.set_num_threads(1)
     chunk = chunk_size(cfg, hp)
-    venv = _make_venv(cfg, hp)
+    if not isinstance(nthread, int) or isinstance(nthread, bool) or not 1 <= nthread <= 64:
+        raise ValueError(f"nthread: must be an integer in [1, 64], got {nthread!r}")
+    venv = _make_venv(cfg, hp, nthread)
     norm = venv if isinstance(venv, VecNormalize) else None
     rows: list[dict] = []
     latest = _latest_checkpoint(ckpt_dir) if resume else None
@@ -226,7 +255,7 @@ def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[
         model = _build(cfg, hp, venv)
     from gripper.rl.evaluation import evaluate_policy, make_eval_env
 
-    eval_env = make_eval_env(cfg.env_kwargs(), cfg.eval_episodes, cfg.env_id())
+    eval_env = make_eval_env(cfg.env_kwargs(), cfg.eval_episodes, cfg.env_id(), nthread=nthread)
     columns = COLUMNS + [f"eval_{o}" for o in sorted(set(cfg.objects))] + (
         ["demo_steps"] if cfg.demo_episodes else [])
     t_wall = rows[-1]["wall_s"] if rows else 0.0
@@ -299,6 +328,7 @@ def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[
             log = episode_log(cfg.n_envs, final_step=cfg.goal_conditioned)
             model.learn(chunk, reset_num_timesteps=False, callback=log, progress_bar=False)
             done_steps = model.num_timesteps
+            _end_cut_episodes(model)
             if norm is not None:
                 norm.training = False
 
@@ -340,7 +370,7 @@ def load_policy(run: str | Path) -> tuple[TrainConfig, Callable[[np.ndarray], np
     if not (run / CONFIG_FILE).exists() or not (run / POLICY_FILE).exists():
         raise ValueError(f"--run: {run} holds no trained policy ({CONFIG_FILE} and {POLICY_FILE})")
     cfg = TrainConfig.from_json(_run_config(run / CONFIG_FILE))
-    model = algorithm_class(cfg.algo).load(str(run / POLICY_FILE), device="cpu")
+    model = load_model(run / POLICY_FILE, cfg.algo)
     norm = None
     if (run / NORM_FILE).exists():
         import pickle

@@ -61,6 +61,8 @@ def add(sub) -> None:
                     help="override a hyper-parameter, e.g. --set n_epochs=5 (repeatable)")
     tr.add_argument("--reward-weight", action="append", metavar="TERM=W",
                     help="override a dense reward weight, e.g. --reward-weight contact=1 (repeatable)")
+    number(tr, "--threads", int, lo=1, hi=64, default=1,
+           help="MuJoCo threads stepping the envs (the curve is the same for any number)")
     tr.add_argument("--out", required=True, metavar="DIR", help="run folder")
     tr.add_argument("--resume", action="store_true", help="continue the run in --out from its latest checkpoint")
     tr.add_argument("--video", metavar="FILE.mp4", help="also write a video of the final policy")
@@ -103,7 +105,7 @@ def run(args) -> int:
         print(f"{row['steps']:>9} steps {row['wall_s']:>8.0f} s  train: {row['train_episodes']:>4} episodes, "
               f"{train}  eval: success {row['eval_success']:.2f} ({per})", flush=True)
 
-    rows = train(cfg, args.out, resume=args.resume, on_progress=show)
+    rows = train(cfg, args.out, resume=args.resume, on_progress=show, nthread=args.threads)
     print(f"wrote {args.out}/policy.zip and progress.csv ({len(rows)} evaluations)")
     if args.video:
         return play_policy(args.out, args.video, args.video_seed, 640, 480, "front")
