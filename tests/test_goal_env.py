@@ -80,3 +80,19 @@ def test_sb3_env_checker_passes():
     from stable_baselines3.common.env_checker import check_env
 
     check_env(gym.make(ID, objects="block", action_mode="synergy").unwrapped, warn=False)
+
+
+def test_off_the_shelf_her_trains_through_sb3s_own_vec_env():
+    """A user's client: SB3's make_vec_env (DummyVecEnv over gym.make's wrappers), SAC with
+    HerReplayBuffer, which reaches compute_reward through env_method and relabels goals."""
+    pytest.importorskip("stable_baselines3")
+    from stable_baselines3 import SAC, HerReplayBuffer
+    from stable_baselines3.common.env_util import make_vec_env
+
+    venv = make_vec_env(ID, n_envs=2, seed=0, env_kwargs={"objects": "block", "action_mode": "synergy",
+                                                          "max_episode_steps": 20})
+    model = SAC("MultiInputPolicy", venv, replay_buffer_class=HerReplayBuffer, learning_starts=60, batch_size=16,
+                seed=0, device="cpu", policy_kwargs={"net_arch": [16]})
+    model.learn(100)
+    batch = model.replay_buffer.sample(16)
+    assert batch.rewards.shape == (16, 1) and set(np.unique(batch.rewards)) <= {-1.0, 0.0}
