@@ -5,7 +5,9 @@ are under ``docs/rl/``), prints one row per run (algorithm, task, seed, the dete
 success on the 50 unseen evaluation episodes at each evaluation, the first step at which it
 reached 80 %, wall time), then one row per (recipe, task) over its seeds: the success at the last
 evaluation as mean ± standard deviation (sample, n − 1), the steps to 80 % as mean ± standard
-deviation over the seeds that reached it, and how many seeds reached 80 % by the budget. Steps
+deviation over the seeds that reached it, how many seeds reached 80 % by the budget, and the
+evaluation episodes' mean return at the first and the last evaluation (what RL added to a
+cloned policy that already holds: faster, steadier grasps pay more held steps). Steps
 to 80 % count the demonstrations' environment steps (``demo_steps``) with the training's: a
 cloned policy that holds 80 % at step 0 took the demonstrations' steps to get there.
 ``--plot FILE.png`` draws success against environment steps, one panel per task.
@@ -59,20 +61,22 @@ def main() -> None:
         rows = r["rows"]
         # environment steps, the demonstrations' own (demo_steps) counted in
         first = next((int(x["steps"] + x.get("demo_steps", 0)) for x in rows if x["eval_success"] >= th - 1e-9), None)
-        groups[(r["recipe"], r["task"])].append((rows[-1]["eval_success"], first, int(rows[-1]["steps"]), r["budget"]))
+        groups[(r["recipe"], r["task"])].append((rows[-1]["eval_success"], first, int(rows[-1]["steps"]), r["budget"],
+                                                 rows[0]["eval_return"], rows[-1]["eval_return"]))
         curve = ", ".join(f"{x['eval_success']:.0%} ({int(x['steps']):,})" for x in rows)
         reach = f"{first:,}" if first is not None else "not reached"
         print(f"| {r['recipe']} | {r['task']} | {r['seed']} | {curve} | {reach} | {rows[-1]['wall_s'] / 60:.0f} min |")
     print()
     print(f"| recipe | task | seeds | steps | success at the last evaluation | steps to {th:.0%} "
-          f"| seeds at ≥ {th:.0%} |")
-    print("|---|---|---|---|---|---|---|")
+          f"| seeds at ≥ {th:.0%} | return, first → last evaluation |")
+    print("|---|---|---|---|---|---|---|---|")
     for (recipe, task), g in groups.items():
         last = [x[0] * 100 for x in g]
         reached = [x[1] for x in g if x[1] is not None]
         steps = sorted({x[2] for x in g})
-        print(f"| {recipe} | {task} | {len(g)} | {', '.join(f'{s:,}' for s in steps)} | {mean_sd(last, '.0f')} % "
-              f"| {mean_sd([float(x) for x in reached], ',.0f')} | {len(reached)} of {len(g)} |")
+        print(f"| {recipe} | {task} | {len(g)} | {', '.join(f'{s:,}' for s in steps)} | {mean_sd(last, '.1f')} % "
+              f"| {mean_sd([float(x) for x in reached], ',.0f')} | {len(reached)} of {len(g)} "
+              f"| {mean_sd([x[4] for x in g], '.1f')} → {mean_sd([x[5] for x in g], '.1f')} |")
     if args.plot:
         import matplotlib
 
