@@ -18,6 +18,7 @@ Run: .venv/bin/python scripts/rl_table.py docs/rl/* --plot docs/rl/curves.png
 import argparse
 import csv
 import json
+import math
 import statistics
 from collections import defaultdict
 from pathlib import Path
@@ -34,6 +35,8 @@ def load(run: Path) -> dict:
         " + HER" if c.get("goal_conditioned") and c["algo"] != "ppo" else "")
     if c["hyperparams"].get("bc_weight", 0) > 0:
         recipe += " + BC term"
+    if c["algo"] == "ppo":  # the starting exploration noise, e^log_std_init
+        recipe += f", σ₀ {math.exp(cfg['hyperparams']['log_std_init']):.1f}"
     return {"run": run.name, "recipe": recipe, "task": task, "seed": c["seed"], "rows": rows,
             "budget": int(c["steps"])}
 
