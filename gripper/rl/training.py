@@ -183,7 +183,7 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
     ``resume``: continue the run in ``out`` from its latest checkpoint (its config must equal
     ``cfg``). Without it, ``out`` must not hold a run already. ``nthread``: MuJoCo threads of
     the training and evaluation envs (each slot is simulated alone, so the curve is bitwise the
-    same for any number; 2 on 2 free cores steps a grasp about 1.2 times as fast as 1,
+    same for any number; 2 on 2 free cores steps a grasp 1.4 times as fast as 1,
     ``docs/environment.md``, "Cheaper steps").
 
     Raises:
