@@ -149,7 +149,8 @@ def _end_cut_episodes(model) -> None:
 def load_model(path: str | Path, algo: str):
     """A saved model of ``algo`` for acting (an off-policy one without its replay buffer: HER's
     would need the environment)."""
-    custom = {} if algo == "ppo" else {"replay_buffer_class": None, "replay_buffer_kwargs": {}, "buffer_size": 1}
+    custom: dict[str, Any] = {} if algo == "ppo" else {"replay_buffer_class": None, "replay_buffer_kwargs": {},
+                                                       "buffer_size": 1}
     return algorithm_class(algo).load(str(path), device="cpu", custom_objects=custom)
 
 
