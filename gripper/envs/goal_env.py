@@ -60,10 +60,15 @@ def goal_space(cfg: EnvConfig, observation: spaces.Space) -> spaces.Dict:
     return spaces.Dict({"observation": observation, "achieved_goal": goal, "desired_goal": goal})
 
 
+def goal_distance(achieved, desired, cfg: EnvConfig) -> np.ndarray:
+    """Distance [m] between scaled goals (any leading shape)."""
+    return np.linalg.norm(np.asarray(achieved, dtype=np.float64) - np.asarray(desired, dtype=np.float64),
+                          axis=-1) * goal_scale(cfg)
+
+
 def goal_reward(achieved: np.ndarray, desired: np.ndarray, cfg: EnvConfig) -> np.ndarray:
     """The reward of reaching ``achieved`` for ``desired`` (any leading shape, scaled goals)."""
-    d = np.linalg.norm(np.asarray(achieved, dtype=np.float64) - np.asarray(desired, dtype=np.float64),
-                       axis=-1) * goal_scale(cfg)
+    d = goal_distance(achieved, desired, cfg)
     if cfg.reward_type == "sparse":
         return -(d > GOAL_TOLERANCE).astype(np.float64)
     return -d
@@ -111,7 +116,7 @@ class SoftGripperGraspGoalEnv(SoftGripperGraspEnv):
         if info.get("unstable"):
             return out, 0.0, terminated, truncated, info
         reward = float(self.compute_reward(out["achieved_goal"], out["desired_goal"], info))
-        info["is_success"] = bool(np.linalg.norm(out["achieved_goal"] - out["desired_goal"]) * self._scale
+        info["is_success"] = bool(goal_distance(out["achieved_goal"], out["desired_goal"], self.config)
                                   <= GOAL_TOLERANCE)
         return out, reward, terminated, truncated, info
 
@@ -157,7 +162,7 @@ class SoftGripperGraspGoalVectorEnv(SoftGripperGraspVectorEnv):
         resetting = self._autoreset.copy()
         obs, _, terminated, truncated, info = super().step(actions)
         out = self._dict(obs)
-        d = np.linalg.norm(out["achieved_goal"] - out["desired_goal"], axis=-1) * self._scale
+        d = goal_distance(out["achieved_goal"], out["desired_goal"], self.config)
         unstable = np.asarray(info.get("unstable", np.zeros(self.num_envs, dtype=bool)), dtype=bool)
         live = ~resetting & ~unstable
         rewards = np.where(live, self.compute_reward(out["achieved_goal"], out["desired_goal"], info), 0.0)
