@@ -6,6 +6,7 @@ import sys
 import pytest
 
 from gripper.cli.main import main
+from gripper.core.fields import field_specs
 from gripper.core.params import PAPER_HINGE_STIFFNESS, GripperParams
 
 
@@ -40,6 +41,9 @@ BAD = [
     ({"springs": {"closure_stiffness": 0.0}}, "springs.closure_stiffness"),
     ({"layout": {"n_fingers": 0}}, "layout.n_fingers"),
     ({"finger": {"bogus": 1}}, "finger.bogus"),
+    # issue 58: validate() skipped the contact section, so these passed `gripper check`
+    ({"contact": {"model": "nonsense"}}, "contact.model"),
+    ({"contact": {"pad_radius": -1.0}}, "contact.pad_radius"),
 ]
 
 
@@ -48,6 +52,45 @@ def test_invalid_parameters_name_the_field(data, field):
     with pytest.raises(ValueError, match=field.replace(".", r"\.")) as err:
         GripperParams.from_dict(data)
     assert "\n" not in str(err.value)
+
+
+def test_every_section_is_validated():
+    """validate() walks the section registry: a bad value in any section is refused, and a
+    section added to GripperParams without registering it is an error, not a silent skip."""
+    import dataclasses
+
+    from gripper.core.params import _SECTIONS
+
+    assert [f.name for f in dataclasses.fields(GripperParams)] == list(_SECTIONS)
+    for name, klass in _SECTIONS.items():
+        spec = next(iter(field_specs(klass).values()))
+        field = next(iter(field_specs(klass)))
+        bad = "not-a-choice" if spec.kind == "choice" else float("nan")
+        if spec.kind in ("bool", "numbers"):
+            continue
+        broken = object.__new__(klass)
+        for f in dataclasses.fields(klass):
+            object.__setattr__(broken, f.name, getattr(klass(), f.name))
+        object.__setattr__(broken, field, bad)
+        p = dataclasses.replace(GripperParams(), **{name: broken})
+        with pytest.raises(ValueError, match=rf"{name}\.{field}"):
+            p.validate()
+
+    @dataclasses.dataclass(frozen=True)
+    class WithNewSection(GripperParams):
+        extra: object = dataclasses.field(default_factory=object)
+
+    with pytest.raises(TypeError, match="extra"):
+        WithNewSection().validate()
+
+
+@pytest.mark.parametrize("field", ["model", "pad_radius"])
+def test_cli_check_refuses_bad_contact(tmp_path, capsys, field):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[contact]\nmodel = \"nonsense\"\n" if field == "model" else "[contact]\npad_radius = -1.0\n")
+    assert main(["check", "--params", str(bad)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"contact.{field}" in err[0]
 
 
 def test_error_gives_allowed_range():

@@ -723,21 +723,24 @@ class GripperParams(Validated):
     contact: PadContact = field(default_factory=PadContact)
 
     def validate(self) -> Self:
-        """Check every field; return ``self``.
+        """Check every section (each registered in :data:`_SECTIONS`, so none can be skipped),
+        then the rules across sections; return ``self``.
 
         Raises:
             ValueError: naming the first bad field and the allowed range.
+            TypeError: a section field that is not registered (a new section must be added to
+                :data:`_SECTIONS`, whose entries all validate themselves).
         """
-        self.finger.validate()
-        self.material.validate()
-        self.springs.validate(self.finger.n_hinges)
-        self.cable.validate()
-        self.servo.validate()
-        self.layout.validate()
-        self.lift.validate()
-        self.sim.validate()
-        self.actuation.validate()
-        self.pneumatic.validate()
+        unregistered = [f.name for f in dataclasses.fields(self) if f.name not in _SECTIONS]
+        if unregistered:
+            raise TypeError(f"{type(self).__name__}: section(s) {', '.join(unregistered)} not in "
+                            "gripper.core.params._SECTIONS, so validate() would skip them")
+        for name in _SECTIONS:
+            section = getattr(self, name)
+            if isinstance(section, HingeSprings):
+                section.validate(self.finger.n_hinges)
+            else:
+                section.validate()
         if self.cable.diameter >= self.finger.hole_diameter:
             raise ValueError(f"cable.diameter: must be smaller than finger.hole_diameter "
                              f"({self.finger.hole_diameter:g} m), got {self.cable.diameter!r}")
