@@ -121,7 +121,7 @@ class EnvConfig(Validated):
     palm_speed: float = param(PALM_SPEED, "m/s", gt=0, le=1.0,
                               source="palm speed at a velocity action of ±1: the scripted grasp's")
     servo_control: str = param("velocity", "-", choices=("velocity", "position"),
-                               source="servo actions as velocities (integrated) or set-points")
+                               source="finger (drive) actions as velocities (integrated) or set-points")
     frame_skip: int = param(10, "-", ge=1, le=500, integer=True,
                             source="physics steps (2 ms) per control step: a 20 ms control period")
     scale_observations: bool = param(True, "-", source="divide each observation part by its "

@@ -15,7 +15,9 @@ Example:
 
 from __future__ import annotations
 
+import functools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import mujoco
@@ -49,23 +51,71 @@ from gripper.sim.stepping import STATE_SPEC
 CTRL_SPEC = int(mujoco.mjtState.mjSTATE_CTRL)
 
 
-def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
-    """Observation layout: name -> (start index, size, unit). The drive's own parts (its
+@dataclass(frozen=True)
+class ObservationTerm:
+    """One named part of the observation: its unit, its size (a function of the config) and
+    the function that computes it from a step's :class:`ObservationInputs`."""
+
+    name: str
+    unit: str
+    size: Callable[[EnvConfig], int]
+    value: Callable[[ObservationInputs], np.ndarray]
+
+
+def _per_finger(cfg: EnvConfig) -> int:
+    return cfg.n_fingers
+
+
+def _per_hinge(cfg: EnvConfig) -> int:
+    return cfg.n_fingers * len(drive_for(cfg.params).names(0).hinges)
+
+
+def _per_segment(cfg: EnvConfig) -> int:
+    return cfg.n_fingers * drive_for(cfg.params).names(0).n_segments
+
+
+def _drive_state(i: int) -> Callable[[ObservationInputs], np.ndarray]:
+    return lambda o: o.drive_state[i]
+
+
+def _drive_sensed(i: int) -> Callable[[ObservationInputs], np.ndarray]:
+    return lambda o: o.drive_sensed[i]
+
+
+def observation_terms(cfg: EnvConfig) -> tuple[ObservationTerm, ...]:
+    """The observation, term by term, in order: the one table that its layout
+    (:func:`observation_structure`), its scales (:func:`observation_divisor`) and every step's
+    observation (:func:`observe`) are read from. The drive's own parts (its
     ``state_observations``, one entry per finger each) follow the hinge velocities, and what its
     hardware reports (``sensed_observations``) comes last: the cable gripper's cable, servo and
     spool readings; the pneumatic gripper's regulators' pressures, as fractions of the highest
     set-point (``pneumatic.pressure_max``)."""
-    nf = cfg.n_fingers
     drive = drive_for(cfg.params)
-    names = drive.names(0)
-    nh, ns = len(names.hinges), names.n_segments
-    parts = [("hinge_angle", nf * nh, "rad"), ("hinge_velocity", nf * nh, "rad/s"),
-             *[(name, nf, unit) for name, unit in drive.state_observations],
-             ("palm_height", 1, "m"), ("palm_setpoint", 3, "m"),
-             ("object_pos_rel_palm", 3, "m"), ("object_quat", 4, "-"),
-             ("pad_force", nf * ns, "N"), ("finger_object_force", nf, "N"),
-             *[(name, nf, unit) for name, unit in drive.sensed_observations]]
-    return _layout(parts)
+    return (
+        ObservationTerm("hinge_angle", "rad", _per_hinge, lambda o: o.data.qpos[o.scene.hinge_q]),
+        ObservationTerm("hinge_velocity", "rad/s", _per_hinge, lambda o: o.data.qvel[o.scene.hinge_v]),
+        *[ObservationTerm(name, unit, _per_finger, _drive_state(i))
+          for i, (name, unit) in enumerate(drive.state_observations)],
+        ObservationTerm("palm_height", "m", lambda c: 1, lambda o: o.palm[2:3]),
+        ObservationTerm("palm_setpoint", "m", lambda c: 3, _palm_setpoint),
+        ObservationTerm("object_pos_rel_palm", "m", lambda c: 3,
+                        lambda o: o.scene.probe.object_pos(o.data) - o.palm),
+        ObservationTerm("object_quat", "-", lambda c: 4, _object_quat),
+        ObservationTerm("pad_force", "N", _per_segment, lambda o: o.sens[o.scene.pads]),
+        ObservationTerm("finger_object_force", "N", _per_finger, lambda o: o.scene.probe.finger_forces(o.data)),
+        *[ObservationTerm(name, unit, _per_finger, _drive_sensed(i))
+          for i, (name, unit) in enumerate(drive.sensed_observations)],
+    )
+
+
+def observation_structure(cfg: EnvConfig) -> dict[str, tuple[int, int, str]]:
+    """Observation layout: name -> (start index, size, unit), from :func:`observation_terms`."""
+    out, i = {}, 0
+    for term in observation_terms(cfg):
+        size = term.size(cfg)
+        out[term.name] = (i, size, term.unit)
+        i += size
+    return out
 
 
 def observation_divisor(cfg: EnvConfig) -> np.ndarray:
@@ -75,14 +125,6 @@ def observation_divisor(cfg: EnvConfig) -> np.ndarray:
     for name, (_, size, _) in observation_structure(cfg).items():
         out += [OBSERVATION_SCALES[name][0] if cfg.scale_observations else 1.0] * size
     return np.array(out)
-
-
-def _layout(parts: list[tuple[str, int, str]]) -> dict[str, tuple[int, int, str]]:
-    out, i = {}, 0
-    for name, size, unit in parts:
-        out[name] = (i, size, unit)
-        i += size
-    return out
 
 
 class Scene:
@@ -104,7 +146,7 @@ class Scene:
                        if mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, a) >= 0}
         sadr = lambda name: m.sensor_adr[m.sensor(name).id]  # noqa: E731
         self.pads = np.array([sadr(pad) for n in names for pad in n.pads])
-        self.servo = self.probe.servo  # each finger's drive actuator: its servo, its chamber's regulator, ...
+        self.drive_act = self.probe.servo  # each finger's drive actuator: its servo, its chamber's regulator, ...
         self.sensor = drive.sensor(m)
         self.act_lift = {a: m.actuator(a).id for a in self.lift_q}
         self.lift_act_ids = np.array(list(self.act_lift.values()))
@@ -112,7 +154,8 @@ class Scene:
         self.z_min = drive.finger_length + TIP_FLOOR_CLEARANCE - self.home
         self.z_start = obj.height + drive.finger_length + START_CLEARANCE - self.home
         self.z_max = 0.0  # the lift's home: palm face at params.lift.home_height
-        self.servo_max = float(m.actuator_ctrlrange[self.servo[0], 1])
+        # the top of the drive's command range (a servo's travel [rad], a regulator's highest set-point [Pa])
+        self.command_max = float(m.actuator_ctrlrange[self.drive_act[0], 1])
         # finger pairs that oppose each other across the palm (azimuths 2πk/n apart by >= OPPOSING_ANGLE)
         gap = lambda i, j: abs(math.remainder(2.0 * math.pi * (i - j) / nf, 2.0 * math.pi))  # noqa: E731
         self.opposing = np.array([(i, j) for i in range(nf) for j in range(i + 1, nf) if gap(i, j) >= OPPOSING_ANGLE],
@@ -123,6 +166,7 @@ class Scene:
         self.nominal_inertia = m.body_inertia.copy()
         self.nominal_friction = m.geom_friction.copy()
         self.nstate = mujoco.mj_stateSize(m, STATE_SPEC)
+        self.observation_terms = observation_terms(cfg)
         self._signature: tuple | None = None
         self._build_control_map()
         # observation gather: palm x/y joints (or none), object body (or the flex centroid)
@@ -146,20 +190,21 @@ class Scene:
         """The x or y action that sets the palm ``offset`` from its home axis [m]."""
         return float(np.clip(offset / XY_ACTION_RANGE, -1.0, 1.0))
 
-    def servo_action(self, angle: float) -> float:
-        """The servo action that sets the spool angle ``angle`` [rad]."""
-        return float(np.clip(2.0 * angle / self.servo_max - 1.0, -1.0, 1.0))
+    def command_action(self, command: float) -> float:
+        """The finger action that sets the drive's command to ``command`` (its unit: a servo's
+        spool angle [rad], a regulator's pressure set-point [Pa])."""
+        return float(np.clip(2.0 * command / self.command_max - 1.0, -1.0, 1.0))
 
     def controls(self, action: np.ndarray, previous: np.ndarray) -> np.ndarray:
         """Map an action in [-1, 1] to the actuator controls (nu,), given the ``previous``
         control period's controls.
 
-        Servos (spool angle in [0, full travel]) by ``servo_control``, palm stages (lift z in
-        [z_min, z_max], x/y in ±XY_ACTION_RANGE) by ``palm_control``: ``"position"``, the
-        set-point mapped linearly from [-1, 1] onto its range; ``"velocity"``, the previous
-        set-point moved by ``action × speed × control period`` and kept in its range (servos:
-        the servo's slew rate, its no-load speed; palm: ``palm_speed``). Actuators without an
-        action stay at 0."""
+        The drive's actuators (their command in [0, command_max]) by ``servo_control``, palm
+        stages (lift z in [z_min, z_max], x/y in ±XY_ACTION_RANGE) by ``palm_control``:
+        ``"position"``, the set-point mapped linearly from [-1, 1] onto its range;
+        ``"velocity"``, the previous set-point moved by ``action × speed × control period`` and
+        kept in its range (drive: its ``command_rate``; palm: ``palm_speed``). Actuators without
+        an action stay at 0."""
         a = np.clip(action, -1.0, 1.0)[self._ctrl_source]
         u = self._ctrl_offset + self._ctrl_scale * a
         for idx, step, lo, hi in self._velocity:
@@ -173,8 +218,8 @@ class Scene:
         self._ctrl_scale = np.zeros(nu)
         fingers = self.cfg.action_mode == "fingers"
         k = self.cfg.n_fingers if fingers else 1
-        self._ctrl_source[self.servo] = np.arange(k) if fingers else 0  # synergy: one command
-        self._ctrl_offset[self.servo] = self._ctrl_scale[self.servo] = 0.5 * self.servo_max
+        self._ctrl_source[self.drive_act] = np.arange(k) if fingers else 0  # synergy: one command
+        self._ctrl_offset[self.drive_act] = self._ctrl_scale[self.drive_act] = 0.5 * self.command_max
         z = self.act_lift["lift_z"]
         self._ctrl_source[z] = k
         self._ctrl_offset[z] = 0.5 * (self.z_min + self.z_max)
@@ -195,7 +240,7 @@ class Scene:
         if self.cfg.servo_control == "velocity":
             # the drive's rate: the servo's slew rate, the regulator's set-point at the grasp protocol's ramp
             rate = self.drive.command_rate(HELD)
-            self._velocity.append((np.asarray(self.servo), rate * dt, 0.0, self.servo_max))
+            self._velocity.append((np.asarray(self.drive_act), rate * dt, 0.0, self.command_max))
 
 
 class SceneSet:
@@ -281,23 +326,51 @@ def load_state(ep: EpisodeState, state: np.ndarray, ctrl: np.ndarray) -> None:
     mujoco.mj_forward(m, d)
 
 
-def observe(ep: EpisodeState, sens: np.ndarray) -> np.ndarray:
-    """The observation (float64) from the data's current state and the last sensor row."""
-    s, d = ep.scene, ep.data
-    q = d.qpos
-    palm = np.zeros(3)
-    palm[s.palm_xy_slot] = q[s.palm_xy_q]
-    palm[2] = s.home + q[s.lift_q["lift_z"]]
-    pos = s.probe.object_pos(d) - palm
-    quat = d.xquat[s.probe.body] if s.probe.body >= 0 else IDENTITY_QUAT
+class ObservationInputs:
+    """What the observation terms of one step read: the episode's scene and data, the last
+    sensor row, and the quantities several terms share, each computed once on first use (the
+    drive's sensor reading draws its noise from the episode's generator)."""
+
+    def __init__(self, ep: EpisodeState, sens: np.ndarray):
+        self.ep, self.scene, self.data, self.sens = ep, ep.scene, ep.data, sens
+
+    @functools.cached_property
+    def palm(self) -> np.ndarray:
+        """The palm centre [m, world frame]: x/y from their stages (0 without), z its face's height."""
+        s, q = self.scene, self.data.qpos
+        palm = np.zeros(3)
+        palm[s.palm_xy_slot] = q[s.palm_xy_q]
+        palm[2] = s.home + q[s.lift_q["lift_z"]]
+        return palm
+
+    @functools.cached_property
+    def drive_state(self) -> list[np.ndarray]:
+        return self.scene.drive.observe_state(self.scene.model, self.data, self.sens)
+
+    @functools.cached_property
+    def drive_sensed(self) -> list[np.ndarray]:
+        s = self.scene
+        return s.drive.observe_sensed(s.model, s.sensor.read(self.sens, self.ep.sensor_rng))
+
+
+def _palm_setpoint(o: ObservationInputs) -> np.ndarray:
+    s, ctrl = o.scene, o.data.ctrl
     setpoint = np.zeros(3)
-    setpoint[s.palm_xy_slot] = d.ctrl[s.palm_xy_act]
-    setpoint[2] = s.home + d.ctrl[s.act_lift["lift_z"]]
-    m, drive = s.model, s.drive
-    reading = s.sensor.read(sens, ep.sensor_rng)
-    return np.concatenate([
-        q[s.hinge_q], d.qvel[s.hinge_v], *drive.observe_state(m, d, sens), palm[2:3], setpoint, pos, quat,
-        sens[s.pads], s.probe.finger_forces(d), *drive.observe_sensed(m, reading)])
+    setpoint[s.palm_xy_slot] = ctrl[s.palm_xy_act]
+    setpoint[2] = s.home + ctrl[s.act_lift["lift_z"]]
+    return setpoint
+
+
+def _object_quat(o: ObservationInputs) -> np.ndarray:
+    body = o.scene.probe.body
+    return o.data.xquat[body] if body >= 0 else IDENTITY_QUAT
+
+
+def observe(ep: EpisodeState, sens: np.ndarray) -> np.ndarray:
+    """The observation (float64) from the data's current state and the last sensor row: the
+    scene's :func:`observation_terms`, in order."""
+    inputs = ObservationInputs(ep, sens)
+    return np.concatenate([term.value(inputs) for term in ep.scene.observation_terms])
 
 
 def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.ndarray, cfg: EnvConfig,
@@ -316,7 +389,7 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     opposed = bool((pressing[s.opposing[:, 0]] & pressing[s.opposing[:, 1]]).any()) if len(s.opposing) else False
     touching = float(np.count_nonzero(pressing)) / cfg.n_fingers if opposed else 0.0
     near = 1.0 - math.tanh(reach / REACH_SCALE)
-    openness = 1.0 - float(np.mean(d.ctrl[s.servo])) / s.servo_max
+    openness = 1.0 - float(np.mean(d.ctrl[s.drive_act])) / s.command_max
     # damage: the object's own criterion where it can be read at every step
     if s.obj.kind in STRAIN_DAMAGE_KINDS:
         ep.peak_strain = max(ep.peak_strain, s.probe.edge_strain(d))
