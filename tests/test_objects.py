@@ -68,7 +68,7 @@ def test_wilson_interval_known_values():
 
 
 def test_paper_box_shell_is_closed_and_compiles():
-    from gripper.objects.scene_objects import box_shell
+    from gripper.objects.kinds.flex import box_shell
     from gripper.sim.scene import build_grasp_scene
     obj = get_object("paper_box")
     mesh = box_shell(obj.size, obj.mesh_points)

@@ -44,7 +44,7 @@ from gripper.objects.grasp_object import GraspObject
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement
 from gripper.sim.damage import running_damage_measure
-from gripper.sim.probes import STRAIN_DAMAGE_KINDS, ObjectProbe
+from gripper.sim.probes import ObjectProbe
 from gripper.sim.scene import build_grasp_scene, trial_params
 from gripper.sim.stepping import STATE_SPEC
 
@@ -391,7 +391,7 @@ def evaluate(ep: EpisodeState, obs: np.ndarray, sens: np.ndarray, action: np.nda
     near = 1.0 - math.tanh(reach / REACH_SCALE)
     openness = 1.0 - float(np.mean(d.ctrl[s.drive_act])) / s.command_max
     # damage: the object's own criterion where it can be read at every step
-    if s.obj.kind in STRAIN_DAMAGE_KINDS:
+    if s.obj.reads_strain:
         ep.peak_strain = max(ep.peak_strain, s.probe.edge_strain(d))
     measure = running_damage_measure(s.model, d, s.obj, s.probe, peak_strain=ep.peak_strain,
                                      total_force=float(finger.sum()))

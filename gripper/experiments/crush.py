@@ -11,7 +11,7 @@ The plate is a mocap body (it follows its commanded height whatever the reaction
 10 mm thick, starting ``CRUSH_GAP`` above the object's nominal top. It moves down at ``speed`` to
 ``depth`` below that top, holds for ``hold_s``, and goes back up at the same speed. The measure
 is the one the grasp trials use (:func:`gripper.sim.damage.damage_measure`): peak edge strain for
-the balloon and the bag, the permanent dent after :data:`gripper.sim.damage.SPRINGBACK_S` of elastic
+the balloon and the bag, the permanent dent after :data:`gripper.objects.kinds.paper_box.SPRINGBACK_S` of elastic
 spring-back for the paper box, and for rigid parts the peak plate force.
 
 Example:

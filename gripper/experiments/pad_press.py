@@ -26,7 +26,7 @@ import numpy as np
 from gripper.core.params import GripperParams
 from gripper.core.timesteps import TRIAL_TIMESTEP
 from gripper.drives import drive_for
-from gripper.objects.scene_objects import RIGID_CONTACT_SOLIMP, RIGID_CONTACT_SOLREF
+from gripper.objects.kinds.rigid import RIGID_CONTACT_SOLIMP, RIGID_CONTACT_SOLREF
 from gripper.parts.defaults import add_defaults
 from gripper.parts.pads import PadMaker, add_pad_meshes
 

@@ -4,7 +4,7 @@ The mesh check of the box's face (``docs/performance.md``, "Mesh resolution"): a
 :data:`PRESS_RADIUS` on a mocap body moves at :data:`PRESS_SPEED` into the middle of the box's
 +x face to ``depth``, holds :data:`PRESS_HOLD_S` and withdraws; a fixed wall behind the far face
 keeps the box from sliding. It returns the peak normal force on the sphere and the permanent
-dent after spring-back (:func:`gripper.sim.damage.permanent_dent`, the benchmark's own measure).
+dent after spring-back (:func:`gripper.objects.kinds.paper_box.permanent_dent`, the benchmark's own measure).
 
 Example:
     >>> from gripper.experiments.press import face_press
@@ -21,9 +21,9 @@ import mujoco
 from gripper.core.params import GripperParams
 from gripper.drives import drive_for
 from gripper.model.builders import build_scene_spec
+from gripper.objects.kinds.paper_box import permanent_dent
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement, add_object
-from gripper.sim.damage import permanent_dent
 from gripper.sim.probes import ObjectProbe, geom_normal_force
 from gripper.sim.scene import trial_params
 

@@ -48,28 +48,30 @@ from typing import Any
 from gripper.core.fields import check_safe_name
 from gripper.core.ranges import OBJECT_DENSITY
 from gripper.core.user_files import read_user_data
-from gripper.objects.grasp_object import (
-    DAMAGE_CRITERIA,
-    DEFAULT_MESH_POINTS,
-    KINDS,
-    MATERIAL_NEEDS,
-    MESH_POINTS_RANGE,
-    RIGID_KINDS,
-    GraspObject,
-)
-from gripper.objects.mesh_objects import RIGID_CLOSE, mesh_object
+from gripper.objects.grasp_object import MATERIAL_RANGES, GraspObject
+from gripper.objects.kinds import ObjectKind, object_kind, registered_kinds
+from gripper.objects.kinds.base import RIGID_CLOSE
+from gripper.objects.kinds.flex import MESH_POINTS_RANGE
+from gripper.objects.mesh_objects import mesh_object
 
-MATERIAL_KEYS = ("youngs_modulus", "thickness", "yield_strain")
-SECTIONS: dict[str, tuple[str, ...] | None] = {
+MATERIAL_KEYS = tuple(MATERIAL_RANGES)
+# The tables every object file may hold, with their keys (None: any key); a kind adds its own
+# (ObjectKind.file_tables: the zipper bag's [contents]).
+COMMON_TABLES: dict[str, tuple[str, ...] | None] = {
     "object": ("name", "kind", "mesh", "size", "mass", "density", "friction", "yaw_symmetric",
                "close_command", "mesh_points"),
     "damage": ("criterion", "limit"),
     "material": MATERIAL_KEYS,
-    "contents": ("count", "size", "mass"),
     "reasons": None,  # any key: free text
 }
-# The criterion a deformable kind is damaged by (the project models one per kind).
-OWN_CRITERION = {"balloon": "strain", "bag": "strain", "zipper_bag": "strain", "paper_box": "dent"}
+
+
+def file_tables() -> dict[str, tuple[str, ...] | None]:
+    """Every table an object file may hold: the common ones and each registered kind's own."""
+    out = dict(COMMON_TABLES)
+    for kind in registered_kinds().values():
+        out.update(kind.file_tables)
+    return out
 
 
 def load_object_file(path: str | Path) -> GraspObject:
@@ -83,34 +85,37 @@ def load_object_file(path: str | Path) -> GraspObject:
     return object_from_dict(data, where=f"object file {path}", base=path.parent)
 
 
-def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspObject:
-    """Build an object from an object file's tables (see the module docstring)."""
-    def fail(key: str, msg: str) -> ValueError:
-        return ValueError(f"{where}: {key}: {msg}")
+class _Reader:
+    """Reads and checks an object file's values; every error names the file and the key."""
 
-    if not isinstance(data, dict):
-        raise ValueError(f"{where}: expected tables {', '.join(SECTIONS)}")
-    for section, table in data.items():
-        if section not in SECTIONS:
-            raise fail(section, f"unknown section; allowed: {', '.join(SECTIONS)}")
-        if not isinstance(table, dict):
-            raise fail(section, "must be a table")
-        allowed = SECTIONS[section]
-        for key, value in table.items():
-            if allowed is not None and key not in allowed:
-                raise fail(f"{section}.{key}", f"unknown key; allowed: {', '.join(allowed)}")
-            if allowed is None and not isinstance(value, str):
-                raise fail(f"{section}.{key}", f"must be text, got {value!r}")
-    obj = data.get("object")
-    if obj is None:
-        raise fail("object", "missing section")
-    dmg, mat = data.get("damage", {}), data.get("material", {})
-    reasons = tuple(sorted(data.get("reasons", {}).items()))
+    def __init__(self, where: str):
+        self.where = where
 
-    def get(table: dict, section: str, key: str, kind: str, default: Any = None, required: bool = False):
+    def fail(self, key: str, msg: str) -> ValueError:
+        return ValueError(f"{self.where}: {key}: {msg}")
+
+    def check_tables(self, data: Any) -> None:
+        tables = file_tables()
+        if not isinstance(data, dict):
+            raise ValueError(f"{self.where}: expected tables {', '.join(tables)}")
+        for section, table in data.items():
+            if section not in tables:
+                raise self.fail(section, f"unknown section; allowed: {', '.join(tables)}")
+            if not isinstance(table, dict):
+                raise self.fail(section, "must be a table")
+            allowed = tables[section]
+            for key, value in table.items():
+                if allowed is not None and key not in allowed:
+                    raise self.fail(f"{section}.{key}", f"unknown key; allowed: {', '.join(allowed)}")
+                if allowed is None and not isinstance(value, str):
+                    raise self.fail(f"{section}.{key}", f"must be text, got {value!r}")
+
+    def __call__(self, table: dict, section: str, key: str, kind: str, default: Any = None,
+                 required: bool = False) -> Any:
+        """``table[key]`` checked as ``kind`` (text, bool, size, number > 0), else ``default``."""
         if key not in table:
             if required:
-                raise fail(f"{section}.{key}", "missing")
+                raise self.fail(f"{section}.{key}", "missing")
             return default
         v = table[key]
         if kind == "text":
@@ -126,97 +131,118 @@ def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspO
             ok = isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) and v > 0
             allowed = "a number > 0"
         if not ok:
-            raise fail(f"{section}.{key}", f"must be {allowed}, got {v!r}")
+            raise self.fail(f"{section}.{key}", f"must be {allowed}, got {v!r}")
         return tuple(float(x) for x in v) if kind == "size" else (float(v) if kind == "number" else v)
 
-    name = get(obj, "object", "name", "text", required=True)
+
+def object_from_dict(data: Any, *, where: str, base: Path = Path(".")) -> GraspObject:
+    """Build an object from an object file's tables (see the module docstring); what differs
+    between kinds their :class:`~gripper.objects.kinds.ObjectKind` says."""
+    read = _Reader(where)
+    read.check_tables(data)
+    obj = data.get("object")
+    if obj is None:
+        raise read.fail("object", "missing section")
+    name = read(obj, "object", "name", "text", required=True)
     try:
         check_safe_name(name, "object.name")
     except ValueError as e:
-        raise fail("object.name", str(e).partition(": ")[2]) from None
-    kind = get(obj, "object", "kind", "text", required=True)
-    if kind not in KINDS:
-        raise fail("object.kind", f"must be one of {', '.join(KINDS)}, got {kind!r}")
-    mass = get(obj, "object", "mass", "number")
-    density = get(obj, "object", "density", "number")
-    if (mass is None) == (density is None) and not (kind == "mesh" and mass is None and density is None):
-        raise fail("object.mass", "give exactly one of mass [kg] or density [kg/m³]")
-    if density is not None and kind not in RIGID_KINDS:
-        raise fail("object.density", f"a {kind} takes its mass, not a density")
-    if density is not None:
-        OBJECT_DENSITY.check(f"{where}: object.density", density)
-    friction = get(obj, "object", "friction", "number", required=True)
-    yaw_symmetric = get(obj, "object", "yaw_symmetric", "bool",
-                        default=kind in ("rigid_cylinder", "rigid_sphere", "balloon"))
-    close = get(obj, "object", "close_command", "number",
-                default=RIGID_CLOSE if kind in RIGID_KINDS else None, required=kind not in RIGID_KINDS)
-    points = obj.get("mesh_points")
-    if kind not in DEFAULT_MESH_POINTS:
-        if points is not None:
-            raise fail("object.mesh_points", f"a {kind} is rigid: it takes no mesh resolution")
-        points = (0, 0, 0)
-    elif points is None:
-        points = DEFAULT_MESH_POINTS[kind]
-    else:
-        lo, hi = MESH_POINTS_RANGE
-        if not (isinstance(points, list) and len(points) == 3 and all(
-                isinstance(n, int) and not isinstance(n, bool) and lo <= n <= hi for n in points)):
-            raise fail("object.mesh_points", f"must be three whole numbers from {lo} to {hi} (points "
-                       f"along x, y, z), got {points!r}")
-        points = tuple(points)
-    size = None
-    if kind != "mesh":
-        if "mesh" in obj:
-            raise fail("object.mesh", f"only kind = \"mesh\" takes a mesh, this is a {kind}")
-        size = get(obj, "object", "size", "size", required=True)
-    own = OWN_CRITERION.get(kind)
-    if own is None and "criterion" not in dmg:
-        raise fail("damage.criterion", "missing: declare how the object is damaged, criterion = "
-                   "\"contact_force\" with a limit [N], or \"none\"")
-    criterion = get(dmg, "damage", "criterion", "text", default=own)
-    if criterion not in DAMAGE_CRITERIA or kind not in DAMAGE_CRITERIA[criterion][1]:
-        fits = [c for c, (_, kinds) in DAMAGE_CRITERIA.items() if kind in kinds]
-        raise fail("damage.criterion", f"a {kind} allows {', '.join(fits)}, got {criterion!r}")
-    limit = get(dmg, "damage", "limit", "number", default=0.0, required=criterion != "none")
-    for key in MATERIAL_NEEDS.get(kind, ()):
-        get(mat, "material", key, "number", required=True)
-    if kind not in MATERIAL_NEEDS and mat:
-        raise fail("material", f"a {kind} is rigid: it takes no material table")
-    material = {k: get(mat, "material", k, "number", default=0.0) for k in MATERIAL_KEYS}
-    cont = data.get("contents", {})
-    contents: dict[str, Any] = {}
-    if kind == "zipper_bag":
-        count = cont.get("count")
-        if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 64:
-            raise fail("contents.count", f"must be a whole number from 1 to 64, got {count!r}")
-        contents = {"contents_count": count,
-                    "contents_size": get(cont, "contents", "size", "size", required=True),
-                    "contents_mass": get(cont, "contents", "mass", "number", required=True)}
-    elif cont:
-        raise fail("contents", f"only a zipper_bag holds loose contents, this is a {kind}")
+        raise read.fail("object.name", str(e).partition(": ")[2]) from None
+    kind_name = read(obj, "object", "kind", "text", required=True)
+    try:
+        kind = object_kind(kind_name)
+    except ValueError as e:
+        raise read.fail("object.kind", str(e)) from None
+    for section in file_tables().keys() - COMMON_TABLES.keys() - kind.file_tables.keys():
+        if section in data:
+            owners = [k.name for k in registered_kinds().values() if section in k.file_tables]
+            what = "loose contents" if section == "contents" else f"a [{section}] table"
+            raise read.fail(section, f"only a {' or '.join(owners)} holds {what}, this is a {kind_name}")
+    fields = _common_fields(read, obj, kind)
+    fields.update(_damage_and_material(read, data.get("damage", {}), data.get("material", {}), kind))
+    fields.update(kind.read_tables(data, read, read.fail))
+    fields["reasons"] = tuple(sorted(data.get("reasons", {}).items()))
+    return _build(read, obj, kind, fields, base)
 
-    if kind == "mesh":
-        mesh_name = get(obj, "object", "mesh", "text", required=True)
+
+def _common_fields(read: _Reader, obj: dict, kind: ObjectKind) -> dict[str, Any]:
+    """The ``[object]`` table's fields every kind has (mass or density, friction, the closing
+    command, the mesh resolution)."""
+    mass = read(obj, "object", "mass", "number")
+    density = read(obj, "object", "density", "number")
+    takes_density = not kind.deformable
+    if (mass is None) == (density is None) and not (kind.name == "mesh" and mass is None and density is None):
+        raise read.fail("object.mass", "give exactly one of mass [kg] or density [kg/m³]")
+    if density is not None and not takes_density:
+        raise read.fail("object.density", f"a {kind.name} takes its mass, not a density")
+    if density is not None:
+        OBJECT_DENSITY.check(f"{read.where}: object.density", density)
+    close = read(obj, "object", "close_command", "number", default=None if kind.deformable else RIGID_CLOSE,
+                 required=kind.deformable)
+    size = None
+    if kind.name != "mesh":
+        if "mesh" in obj:
+            raise read.fail("object.mesh", f"only kind = \"mesh\" takes a mesh, this is a {kind.name}")
+        size = read(obj, "object", "size", "size", required=True)
+    return {"name": obj["name"], "kind": kind.name, "mass": mass, "density": density, "size": size,
+            "friction": read(obj, "object", "friction", "number", required=True),
+            "yaw_symmetric": read(obj, "object", "yaw_symmetric", "bool", default=kind.yaw_symmetric),
+            "close_command": close, "mesh_points": _mesh_points(read, obj.get("mesh_points"), kind)}
+
+
+def _mesh_points(read: _Reader, points: Any, kind: ObjectKind) -> tuple[int, int, int]:
+    if not kind.deformable:
+        if points is not None:
+            raise read.fail("object.mesh_points", f"a {kind.name} is rigid: it takes no mesh resolution")
+        return (0, 0, 0)
+    if points is None:
+        return kind.default_mesh_points
+    lo, hi = MESH_POINTS_RANGE
+    if not (isinstance(points, list) and len(points) == 3 and all(
+            isinstance(n, int) and not isinstance(n, bool) and lo <= n <= hi for n in points)):
+        raise read.fail("object.mesh_points", f"must be three whole numbers from {lo} to {hi} (points "
+                        f"along x, y, z), got {points!r}")
+    return (points[0], points[1], points[2])
+
+
+def _damage_and_material(read: _Reader, dmg: dict, mat: dict, kind: ObjectKind) -> dict[str, Any]:
+    """The damage criterion and limit, and the material fields the kind needs."""
+    if kind.own_criterion is None and "criterion" not in dmg:
+        raise read.fail("damage.criterion", "missing: declare how the object is damaged, criterion = "
+                        "\"contact_force\" with a limit [N], or \"none\"")
+    criterion = read(dmg, "damage", "criterion", "text", default=kind.own_criterion)
+    if criterion not in kind.criteria:
+        raise read.fail("damage.criterion", f"a {kind.name} allows {', '.join(kind.criteria)}, got {criterion!r}")
+    limit = read(dmg, "damage", "limit", "number", default=0.0, required=kind.criteria[criterion].limit is not None)
+    for key in kind.material_fields:
+        read(mat, "material", key, "number", required=True)
+    if not kind.material_fields and mat:
+        raise read.fail("material", f"a {kind.name} is rigid: it takes no material table")
+    material = {k: read(mat, "material", k, "number", default=0.0) for k in MATERIAL_KEYS}
+    return {"damage": criterion, "damage_limit": limit, **material}
+
+
+def _build(read: _Reader, obj: dict, kind: ObjectKind, fields: dict[str, Any], base: Path) -> GraspObject:
+    """The object: from its mesh file (kind ``mesh``), else from its size."""
+    mass, density, size = fields.pop("mass"), fields.pop("density"), fields.pop("size")
+    if kind.name == "mesh":
+        mesh_name = read(obj, "object", "mesh", "text", required=True)
         if "size" in obj:
-            raise fail("object.size", "a mesh takes its size from the mesh; remove size")
+            raise read.fail("object.size", "a mesh takes its size from the mesh; remove size")
         mesh_path = Path(mesh_name) if Path(mesh_name).is_absolute() else base / mesh_name
         try:
-            made = mesh_object(mesh_path, mass=mass, density=density, friction=friction,
-                               close_command=close, damage=criterion, damage_limit=limit,
-                               yaw_symmetric=yaw_symmetric, name=name, reasons=reasons)
+            return mesh_object(mesh_path, mass=mass, density=density, friction=fields["friction"],
+                               close_command=fields["close_command"], damage=fields["damage"],
+                               damage_limit=fields["damage_limit"], yaw_symmetric=fields["yaw_symmetric"],
+                               name=fields["name"], reasons=fields["reasons"])
         except ValueError as e:
-            raise fail("object.mesh", str(e)) from None
-        return made
-    assert size is not None
+            raise read.fail("object.mesh", str(e)) from None
     if mass is None:
-        volume = (8 * size[0] * size[1] * size[2] if kind == "rigid_box"
-                  else 4 / 3 * math.pi * size[0] ** 3 if kind == "rigid_sphere"
-                  else math.pi * size[0] ** 2 * 2 * size[2])
+        volume = kind.volume(size)
+        if volume is None:
+            raise read.fail("object.density", f"a {kind.name} takes its mass, not a density")
         mass = density * volume
     try:
-        return GraspObject(name=name, kind=kind, size=size, mass=mass, friction=friction,
-                           yaw_symmetric=yaw_symmetric, close_command=close, damage=criterion,
-                           damage_limit=limit, mesh_points=points, reasons=reasons, **material,
-                           **contents).validate()
+        return GraspObject(size=size, mass=mass, **fields).validate()
     except ValueError as e:
-        raise ValueError(f"{where}: {e}") from None
+        raise ValueError(f"{read.where}: {e}") from None

@@ -9,59 +9,18 @@ Example:
 
 from __future__ import annotations
 
-import io
 import math
-import warnings
 from pathlib import Path
 
-from gripper.core.user_files import MAX_MESH_BYTES, read_user_bytes
 from gripper.objects.grasp_object import GraspObject
-
-# The rigid objects' closing command: near the end of the servo's travel (π) and past full finger
-# closure (≈ 2.3 rad), so the servo stalls on the part and squeezes with its stall torque
-# (gripper/data/objects/block.toml gives the reason); user meshes default to it.
-RIGID_CLOSE = 3.0
-
+from gripper.objects.kinds.base import RIGID_CLOSE
+from gripper.objects.kinds.mesh import MESH_SUFFIXES, load_mesh
 
 # --- user meshes ---------------------------------------------------------------------------
 
 # Density used for a user mesh given without a mass: a typical 3D-printed part (PLA 1240 kg/m³
 # at about 50 % effective fill).
 DEFAULT_MESH_DENSITY = 620.0
-
-
-MESH_SUFFIXES = ("stl", "obj", "ply")  # the formats trimesh reads without extra packages
-
-def load_mesh(path: str | Path, *, repair: bool = True):
-    """Load an STL/OBJ/PLY with trimesh; repair small holes (with a warning) or refuse.
-
-    Raises:
-        ValueError: unreadable file, not a triangle mesh, or not watertight after repair.
-    """
-    import trimesh
-
-    path = Path(path)
-    suffix = path.suffix.lower().lstrip(".")
-    if suffix not in MESH_SUFFIXES:
-        raise ValueError(f"mesh: {path}: the name must end in {', '.join('.' + s for s in MESH_SUFFIXES)}")
-    data = read_user_bytes(path, "mesh", MAX_MESH_BYTES)  # a regular file of bounded size
-    try:
-        mesh = trimesh.load(io.BytesIO(data), file_type=suffix, force="mesh")
-    except Exception as e:  # trimesh raises many types for malformed files
-        raise ValueError(f"mesh: cannot read {path} as STL/OBJ/PLY ({e})") from None
-    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ValueError(f"mesh: {path} holds no triangles")
-    if not mesh.is_watertight:
-        if repair:
-            trimesh.repair.fill_holes(mesh)
-            trimesh.repair.fix_normals(mesh)
-        if not mesh.is_watertight:
-            raise ValueError(f"mesh: {path} is not watertight (holes or open edges) and could not "
-                             "be repaired; close it in a mesh editor")
-        warnings.warn(f"mesh {path} was not watertight; holes filled by trimesh", stacklevel=2)
-    if mesh.volume <= 0:
-        mesh.invert()
-    return mesh
 
 
 def mesh_object(path: str | Path, *, mass: float | None = None, density: float | None = None,
@@ -92,3 +51,6 @@ def mesh_object(path: str | Path, *, mass: float | None = None, density: float |
                       damage=damage, damage_limit=damage_limit, mesh_file=str(path),
                       footprint_radius=footprint, reasons=reasons)
     return obj.validate()
+
+
+__all__ = ["DEFAULT_MESH_DENSITY", "MESH_SUFFIXES", "RIGID_CLOSE", "load_mesh", "mesh_object"]

@@ -14,7 +14,7 @@ as a piecewise-linear spring (the pad joint's own stiffness from zero, then one 
 tendon spring per knot, MuJoCo's two-valued ``springlength``), knots at forces a factor
 :data:`KNOT_FORCE_RATIO` apart from :data:`KNOT_FORCE_MIN` to ``contact.fit_force_max`` or to where
 the pad bottoms out, whichever is lower. The part's
-side of the contact is made near-rigid (``gripper.objects.scene_objects.RIGID_CONTACT_SOLREF``),
+side of the contact is made near-rigid (``gripper.objects.kinds.rigid.RIGID_CONTACT_SOLREF``),
 so the pad springs carry the indentation. The pad bottoms out at the silicone's depth above the
 cable hole (cable) or the fabric (pneumatic): a joint limit. The element keeps its mass on a
 collision-free copy of its body; the pad takes the mass of its silicone layer.
@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from gripper.objects.scene_objects import RIGID_CONTACT_SOLIMP, RIGID_CONTACT_SOLREF
+from gripper.objects.kinds.rigid import RIGID_CONTACT_SOLIMP, RIGID_CONTACT_SOLREF
 from gripper.parts.names import FingerNames
 
 # The spring's knots: Hertz's force at each, a factor KNOT_FORCE_RATIO apart from KNOT_FORCE_MIN.

@@ -44,7 +44,7 @@ _CACHE: dict[str, dict[str, np.ndarray]] = {}
 
 def needs_canonical_constants(obj: GraspObject) -> bool:
     """Whether ``obj`` compiles to history-dependent constants (the interpolated balloon flex)."""
-    return obj.kind == "balloon"
+    return obj.object_kind.history_dependent
 
 
 def _compile_alone(obj: GraspObject) -> dict[str, np.ndarray]:

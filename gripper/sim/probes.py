@@ -11,11 +11,8 @@ import numpy as np
 
 from gripper.drives import Drive
 from gripper.objects.grasp_object import GraspObject
-from gripper.objects.scene_objects import CONTENTS_BODY, OBJECT_BODY
+from gripper.objects.kinds import CONTENTS_BODY, OBJECT_BODY
 from gripper.parts.names import finger_name
-
-# Objects whose damage measure is the peak edge strain of their flex (burst, tear).
-STRAIN_DAMAGE_KINDS = ("balloon", "bag", "zipper_bag")
 
 
 def geom_normal_force(m: mujoco.MjModel, d: mujoco.MjData, geom: int) -> float:
@@ -71,14 +68,10 @@ class ObjectProbe:
             self.rest_verts = d0.flexvert_xpos[self.vert].copy()
             self.edge_length0 = self._edge_lengths(self.rest_verts)
         self.q_adr = None  # no per-step strain map (set for objects whose damage is a strain)
-        if self.flex >= 0 and self.obj.kind in STRAIN_DAMAGE_KINDS:
+        if self.flex >= 0 and self.obj.reads_strain:
             self._vertex_map(m, d0)
-        if self.obj.kind == "bag":
-            self.body = m.body(CONTENTS_BODY).id
-        elif not self.obj.is_flex:
-            self.body = m.body(OBJECT_BODY).id
-        else:
-            self.body = -1
+        tracked = self.obj.object_kind.tracked_body  # the body whose origin is the object's position
+        self.body = m.body(tracked).id if tracked is not None else -1
         bodies = [self.body] if self.body >= 0 else []
         if self.flex >= 0:
             bodies += sorted({int(b) for b in m.flex_nodebodyid[
@@ -176,7 +169,7 @@ class PeakRecorder:
         self.peak_total = max(self.peak_total, float(per_finger.sum()))
         effort = sensordata[:, self.probe.effort_adr] / self.probe.effort_divisor
         self.peak_effort = max(self.peak_effort, float(effort.max()))
-        if self.probe.obj.kind not in STRAIN_DAMAGE_KINDS:
+        if not self.probe.obj.reads_strain:
             return
         if states is not None and self.probe.q_adr is not None:
             self.peak_strain = max(self.peak_strain, self.probe.edge_strain_steps(states))
