@@ -38,9 +38,10 @@ from pathlib import Path
 import numpy as np
 
 from gripper.bench.defaults import DEFAULT_TRIALS, DEFAULT_WORKERS
-from gripper.bench.execution import check_own_records, check_same_run, open_run, read_jsonl, run_ordered
+from gripper.bench.execution import check_same_run, read_jsonl
+from gripper.bench.resumable import ResumableRun
 from gripper.core.arguments import check_instance
-from gripper.core.atomic import write_atomic, write_csv_atomic, write_text_atomic
+from gripper.core.atomic import write_csv_atomic, write_text_atomic
 from gripper.core.fields import Validated
 from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
@@ -174,43 +175,18 @@ def run_benchmark(cfg: BenchConfig, out: str | Path, *, workers: int = DEFAULT_W
     check_instance("out", out, (str, Path), optional=False)
     cfg.validate()
     run_hash = cfg.hash()
-
-    def own_records(path: Path, repair: bool = True) -> list[TrialRecord]:
-        records = read_trials(path, repair=repair)
-        check_own_records(records, path, run_hash, _trial_key, lambda r: f"trial {r['trial_id']}")
-        return records
-
-    with open_run(out, workers, scheduler, "config.json", "config", run_hash, cfg.identity(),
-                  "a run with another configuration", RUN_FILES,
-                  check_records=lambda repair: own_records(Path(out) / "trials.jsonl", repair)) as out:
-        tpath = out / "trials.jsonl"
-        done: dict[tuple[str, int], Mapping] = {}
-        for r in own_records(tpath):  # again, now that this run holds the folder
-            done[_trial_key(r)] = r
-        jobs = cfg.jobs()
-        spec = dict(zip(cfg.names(), cfg.objects, strict=True))
-        todo = [j for j in jobs if j not in done]
-        t0 = time.perf_counter()
-        run_ordered([(cfg, spec[name], i, run_hash) for name, i in todo], _run_one, tpath, workers=workers,
-                    scheduler=scheduler, on_record=lambda rec: done.__setitem__(_trial_key(rec), rec),
-                    progress=(len(jobs), len(jobs) - len(todo), "grasp trials") if progress else None)
-        _keep_trial_order(tpath, jobs)
-        records = [done[j] for j in jobs]
-        summary = summarize(records, cfg, wall_time_s=time.perf_counter() - t0, resumed=len(jobs) - len(todo))
-        write_summary(out, summary)
+    spec = dict(zip(cfg.names(), cfg.objects, strict=True))
+    run = ResumableRun(marker="config.json", key="config", other="a run with another configuration",
+                       files=RUN_FILES, records="trials.jsonl", label="grasp trials", run_hash=run_hash,
+                       identity=cfg.identity(), jobs=cfg.jobs(),
+                       job_args=lambda job: (cfg, spec[job[0]], job[1], run_hash), fn=_run_one,
+                       record_key=_trial_key, describe=lambda r: f"trial {r['trial_id']}", read=read_trials,
+                       reorder=True)
+    with run.open(out, workers=workers, scheduler=scheduler, progress=progress) as done:
+        summary = summarize(done.records, cfg, wall_time_s=time.perf_counter() - done.started,
+                            resumed=done.resumed)
+        write_summary(done.out, summary)
         return summary
-
-
-def _keep_trial_order(tpath: Path, jobs: list[tuple[str, int]]) -> None:
-    """Rewrite ``trials.jsonl`` in job order (then any other records, in file order) if a rerun
-    appended out of order (a run extended with more trials); atomic, so no record is lost."""
-    lines = [ln for ln in tpath.read_text().splitlines() if ln.strip()] if tpath.exists() else []
-    rank = {j: k for k, j in enumerate(jobs)}
-    keyed = [(_trial_key(json.loads(ln)), ln) for ln in lines]
-    order = sorted(range(len(keyed)), key=lambda k: (rank.get(keyed[k][0], len(rank)), k))
-    if order == list(range(len(keyed))):
-        return
-    write_atomic(tpath, lambda tmp: Path(tmp).write_text("".join(keyed[k][1] + "\n" for k in order)))
 
 
 def summarize(records: Sequence[Mapping], cfg: BenchConfig, wall_time_s: float = 0.0, resumed: int = 0) -> dict:

@@ -167,35 +167,23 @@ RUN_FILES = ("envelope.json", "trials.jsonl", "envelope.csv", "summary.json")
 def run_envelope(env: Envelope, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
                  progress: bool = True) -> dict:
     """Run (or resume) the envelope into ``out``; write the table, the maps and the summary."""
-    from gripper.bench.execution import check_own_records, open_run, read_jsonl, run_ordered
+    from gripper.bench.resumable import ResumableRun
 
     check_instance("env", env, Envelope, optional=False)
     check_instance("out", out, (str, Path), optional=False)
     env.validate()
     h = env.hash()
-
-    def own_records(path: Path, repair: bool = True) -> list[dict]:
-        records = read_jsonl(path, repair=repair)
-        check_own_records(records, path, h, lambda r: (r["point"], r["index"]),
-                          lambda r: f"point {r.get('point')}, trial {r.get('index')}")
-        return records
-
-    with open_run(out, workers, scheduler, "envelope.json", "envelope", h, env.identity(), "another envelope",
-                  RUN_FILES,
-                  check_records=lambda repair: own_records(Path(out) / "trials.jsonl", repair)) as out:
-        path = out / "trials.jsonl"
-        done = {(r["point"], r["index"]): r for r in own_records(path)}  # again, holding the folder
-        jobs = env.jobs()
-        todo = [(env, k, i, h) for k, i in jobs if (k, i) not in done]
-        run_ordered(todo, _run_one, path, workers=workers, scheduler=scheduler,
-                    on_record=lambda r: done.__setitem__((r["point"], r["index"]), r),
-                    progress=(len(jobs), len(jobs) - len(todo), "envelope trials") if progress else None)
-        records = [done[j] for j in jobs]
-        write_table(records, out / "envelope.csv")
-        summary = summarize(records, env)
-        write_atomic(out / "summary.json",
+    run = ResumableRun(marker="envelope.json", key="envelope", other="another envelope", files=RUN_FILES,
+                       records="trials.jsonl", label="envelope trials", run_hash=h, identity=env.identity(),
+                       jobs=env.jobs(), job_args=lambda job: (env, *job, h), fn=_run_one,
+                       record_key=lambda r: (r["point"], r["index"]),
+                       describe=lambda r: f"point {r.get('point')}, trial {r.get('index')}")
+    with run.open(out, workers=workers, scheduler=scheduler, progress=progress) as done:
+        write_table(done.records, done.out / "envelope.csv")
+        summary = summarize(done.records, env)
+        write_atomic(done.out / "summary.json",
                      lambda tmp: Path(tmp).write_text(json.dumps(summary, indent=2, sort_keys=True)))
-        write_maps(records, env, out)
+        write_maps(done.records, env, done.out)
         return summary
 
 

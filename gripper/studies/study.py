@@ -56,37 +56,32 @@ RUN_FILES = ("study.json", "results.jsonl", "results.csv", "recommendations.md")
 def run_study(study: Study, out: str | Path, *, workers: int = DEFAULT_WORKERS, scheduler: str | None = None,
               progress: bool = True) -> list[dict]:
     """Run (or resume) the study into ``out``; write the table, plots and recommendations."""
-    from gripper.bench.execution import check_own_records, open_run, read_jsonl, run_ordered
+    from gripper.bench.resumable import ResumableRun
 
     check_instance("study", study, Study, optional=False)
     check_instance("out", out, (str, Path), optional=False)
     run_hash = study.hash()
     points = study.design_points()
+    run = ResumableRun(marker="study.json", key="study", other="another study", files=RUN_FILES,
+                       records="results.jsonl", label="design points", run_hash=run_hash,
+                       identity=study.identity(), jobs=range(len(points)),
+                       job_args=lambda i: (study, i, points[i], run_hash), fn=run_point,
+                       record_key=lambda r: r.get("point"), describe=lambda r: f"point {r.get('point')}",
+                       check=lambda records, path: _check_points(records, path, points))
+    with run.open(out, workers=workers, scheduler=scheduler, progress=progress) as done:
+        write_table(done.records, study, done.out / "results.csv")
+        write_plots(done.records, study, done.out)
+        write_text_atomic(done.out / "recommendations.md", recommendations(done.records, study))
+        return done.records
 
-    def own_records(path: Path, repair: bool = True) -> list[dict]:
-        records = read_jsonl(path, repair=repair)
-        check_own_records(records, path, run_hash, lambda r: r.get("point"), lambda r: f"point {r.get('point')}")
-        for n, r in enumerate(records, start=1):
-            if r.get("point") not in range(len(points)) or \
-                    json.dumps(r.get("changes"), sort_keys=True) != json.dumps(points[r["point"]], sort_keys=True):
-                raise ValueError(f"--out: {path}: record {n} (point {r.get('point')}) is not a point of this study; "
-                                 "choose another --out folder")
-        return records
 
-    with open_run(out, workers, scheduler, "study.json", "study", run_hash, study.identity(),
-                  "another study", RUN_FILES,
-                  check_records=lambda repair: own_records(Path(out) / "results.jsonl", repair)) as out:
-        path = out / "results.jsonl"
-        done = {r["point"]: r for r in own_records(path)}
-        todo = [(study, i, pt, run_hash) for i, pt in enumerate(points) if i not in done]
-        run_ordered(todo, run_point, path, workers=workers, scheduler=scheduler,
-                    on_record=lambda rec: done.__setitem__(rec["point"], rec),
-                    progress=(len(points), len(points) - len(todo), "design points") if progress else None)
-        records = [done[i] for i in range(len(points))]
-        write_table(records, study, out / "results.csv")
-        write_plots(records, study, out)
-        write_text_atomic(out / "recommendations.md", recommendations(records, study))
-        return records
+def _check_points(records: list[dict], path: Path, points: list[dict]) -> None:
+    """Refuse a record that is not a point of this study (its index or its changes)."""
+    for n, r in enumerate(records, start=1):
+        if r.get("point") not in range(len(points)) or \
+                json.dumps(r.get("changes"), sort_keys=True) != json.dumps(points[r["point"]], sort_keys=True):
+            raise ValueError(f"--out: {path}: record {n} (point {r.get('point')}) is not a point of this study; "
+                             "choose another --out folder")
 
 
 def _shown(key: str, v):
