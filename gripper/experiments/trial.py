@@ -31,21 +31,19 @@ from gripper.core.hashing import stable_hash
 from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
 from gripper.core.ranges import INDEX_MAX, SEED_MAX
-from gripper.drives import Drive, drive_for
+from gripper.drives import drive_for
 from gripper.drives.cable.sensing import ServoSensing
-from gripper.experiments.approach import ApproachPlan, fingertip_palm_z, plan_approach
-from gripper.experiments.protocol import GraspProtocol, TrialNoise, is_held
+from gripper.experiments.grasp_phases import grasp_height, run_phases
+from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
-from gripper.model.builders import WRIST
 from gripper.objects.grasp_object import GraspObject
 from gripper.objects.library import get_object
 from gripper.objects.scene_objects import Placement
-from gripper.sim.damage import damage_measure
 from gripper.sim.depth import DepthCamera, NoObjectSeen, estimate_object, palm_depth_points
 from gripper.sim.probes import ObjectProbe, PeakRecorder
 from gripper.sim.scene import build_grasp_scene, trial_params
 from gripper.sim.stability import SimulationUnstable
-from gripper.sim.stepping import ChunkStepper, run_phase
+from gripper.sim.stepping import ChunkStepper
 
 
 def sample_placement(obj: GraspObject, noise: TrialNoise, seed: int, index: int) -> Placement:
@@ -58,12 +56,6 @@ def sample_placement(obj: GraspObject, noise: TrialNoise, seed: int, index: int)
     fs = rng.uniform(1 - noise.friction_frac, 1 + noise.friction_frac)
     return Placement(x=float(x), y=float(y), yaw=float(yaw) if noise.yaw and not obj.yaw_symmetric else 0.0,
                      mass_scale=float(ms), friction_scale=float(fs))
-
-
-def grasp_height(p: GripperParams, obj: GraspObject, proto: GraspProtocol) -> float:
-    """Palm-face height above the floor at which the fingers close [m], by the catalogue rule
-    (``protocol.approach = "catalogue"``: from the object's size)."""
-    return max(drive_for(p).finger_length + proto.tip_clearance, obj.height + proto.palm_clearance)
 
 
 def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
@@ -158,163 +150,9 @@ def run_protocol(m, d, p, obj, proto, probe, rec, sensor=None, eye: Eye | None =
     if eye is None:
         eye = Eye(DepthCamera(), np.random.default_rng(0))
     try:
-        return _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye)
+        return run_phases(stepper, p, obj, proto, probe, rec, sensor, eye)
     finally:
         stepper.close()
 
 
-def _protocol_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
-    m, d = stepper.m, stepper.d
-    drive: Drive = probe.drive
-    ch = proto.chunk_steps
-    home = p.lift.home_height
-    travel = float(m.actuator_ctrlrange[probe.servo[0], 1])
-    close_rate = drive.open_loop_rate(proto)  # per-object ramp [command unit/s]
-    drive.check_set_point(proto)
-    grip = drive.grip_controller(m, sensor, proto)  # None: the per-object ramp
-    if grip is not None:
-        servo_cmd = grip.goals
-    close_cmd = min(obj.close_command * proto.close_command_scale, travel)
-    lift_y = m.actuator("lift_y").id
-    wrist = m.actuator(WRIST).id if p.lift.yaw_enabled else None
-    turn = [0.0]  # the wrist's goal once the plan has it [rad]
-
-    def ctrl(servo, z, x=None, y=None, yaw=None):
-        def fn(t):
-            u = np.zeros((len(t), m.nu))
-            if wrist is not None:
-                u[:, wrist] = turn[0] if yaw is None else yaw(t)
-            s = np.asarray(servo(t) if callable(servo) else servo, dtype=float)
-            u[:, probe.servo] = s[:, None] if s.ndim == 1 else s  # one goal for all, or one per finger
-            u[:, probe.lift_z] = z(t) if callable(z) else z
-            if x is not None:
-                u[:, probe.lift_x] = x(t) if callable(x) else x
-            if y is not None:
-                u[:, lift_y] = y(t) if callable(y) else y
-            return u
-        return fn
-
-    run_phase(stepper, probe, rec, ctrl(0.0, 0.0), proto.settle_s, ch, "settle")
-    start = probe.object_pos(d)
-    estimate = None
-    if proto.approach == "sensed":
-        estimate = eye.look(m, d, probe.palm)  # raises NoObjectSeen
-        plan = plan_approach(estimate, p, proto)
-    elif proto.grasp == "fingertip":  # the catalogue's size, the fingertip grasp (for ablations)
-        plan = ApproachPlan(grasp="fingertip", x=0.0, y=0.0,
-                            palm_z=drive.finger_length + drive.fingertip_clearance(proto),
-                            support_z=0.0, floor_z=obj.height + proto.palm_clearance)
-    else:
-        plan = ApproachPlan(grasp="envelope", x=0.0, y=0.0, palm_z=grasp_height(p, obj, proto), support_z=0.0)
-    z_grasp = plan.palm_z - home  # lift_z set-point [m]
-    t_app = abs(z_grasp) / proto.approach_speed
-    t_lat = max(math.hypot(plan.x, plan.y) / proto.approach_speed, 1e-9)
-    t_turn = max(abs(plan.yaw) / proto.wrist_speed, 1e-9)
-
-    def lateral(target):
-        return lambda t: target * np.minimum(1.0, t / t_lat)
-
-    run_phase(stepper, probe, rec, ctrl(0.0, lambda t: z_grasp * np.minimum(1.0, t / t_app),
-                                        lateral(plan.x), lateral(plan.y),
-                                        lambda t: plan.yaw * np.minimum(1.0, t / t_turn)),
-              max(t_app, t_lat, t_turn), ch, "approach")
-    turn[0] = plan.yaw
-    xc, yc = plan.x, plan.y
-    sensed: dict[str, dict] = {}
-    z_close: Any = z_grasp
-    if grip is None:
-        t_close = close_cmd / close_rate
-
-        def ramp(t):
-            return close_cmd * np.minimum(1.0, t / t_close)
-
-        if plan.grasp == "fingertip":  # the palm follows the fingers' reach down the ramp
-            def z_close(t):
-                return fingertip_palm_z(plan, p, proto, ramp(t)) - home
-        run_phase(stepper, probe, rec, ctrl(ramp, z_close, xc, yc), t_close + proto.close_hold_s, ch, "close")
-        hold_cmd = close_cmd
-        if plan.grasp == "fingertip":
-            z_grasp = float(fingertip_palm_z(plan, p, proto, close_cmd) - home)
-    else:
-        grip.start(d)
-
-        def closed(dd):
-            grip.update(dd)
-            return not math.isnan(grip.grip_time) and dd.time - grip.t0 >= grip.grip_time + proto.close_hold_s
-
-        if plan.grasp == "fingertip":
-            # the palm descends as the fingers curl, keeping their lowest point at the clearance
-            def z_close(t):
-                return fingertip_palm_z(plan, p, proto, grip.goals(t).min(axis=1)) - home
-        run_phase(stepper, probe, rec, ctrl(servo_cmd, z_close, xc, yc), travel / close_rate + proto.close_hold_s,
-                  ch, "close", closed)
-        hold_cmd = servo_cmd
-        if plan.grasp == "fingertip":
-            z_grasp = float(fingertip_palm_z(plan, p, proto, grip.goal.min()) - home)
-    sensed["grasp"] = sensor.read(d.sensordata).to_dict()
-    t_lift = proto.lift_height / proto.lift_speed
-    z_top = z_grasp + proto.lift_height
-    on_grip = grip.update if grip is not None else None
-
-    def chained(*fns):
-        def fn(dd):
-            for f in fns:
-                if f is not None:
-                    f(dd)
-            return False
-        return fn
-
-    lift = ctrl(hold_cmd, lambda t: z_grasp + proto.lift_height * np.minimum(1.0, t / t_lift), xc, yc)
-    run_phase(stepper, probe, rec, lift, t_lift + proto.lift_settle_s, ch, "lift", on_grip)
-
-    def rel(dd):
-        return probe.object_pos(dd) - dd.xpos[probe.palm]
-
-    rel_lift = rel(d)
-    phase_ok = {}
-
-    def check(name):
-        h = probe.object_pos(d)[2] - start[2]
-        slip = float(np.linalg.norm(rel(d) - rel_lift))
-        phase_ok[name] = (is_held(h, slip, proto), h, slip)
-
-    check("lift")
-    max_slip = [0.0]
-
-    def track(dd):
-        max_slip[0] = max(max_slip[0], float(np.linalg.norm(rel(dd) - rel_lift)))
-        return False
-
-    run_phase(stepper, probe, rec, ctrl(hold_cmd, z_top, xc, yc), proto.hold_s, ch, "hold", chained(on_grip, track))
-    check("hold")
-    sensed["hold"] = sensor.read(d.sensordata).to_dict()
-    w = 2 * math.pi * proto.shake_frequency
-    run_phase(stepper, probe, rec, ctrl(hold_cmd, z_top, lambda t: xc + proto.shake_amplitude * np.sin(w * t), yc),
-              proto.shake_s, ch, "shake", chained(on_grip, track))
-    check("shake")
-    lift_height = float(probe.object_pos(d)[2] - start[2])
-    slip = float(np.linalg.norm(rel(d) - rel_lift))
-    damage = damage_measure(m, d, obj, probe, peak_strain=rec.peak_strain, peak_force=rec.peak_total)
-    if proto.release:
-        if grip is None:
-            opening = ctrl(lambda t: close_cmd * np.maximum(0.0, 1 - t / proto.release_s), z_top, xc, yc)
-        else:
-            grip.release()
-            opening = ctrl(servo_cmd, z_top, xc, yc)
-        run_phase(stepper, probe, rec, opening, proto.release_s, ch, "release", on_grip)
-    damaged = obj.is_damaged(damage)
-    failed = next((name for name in ("lift", "hold", "shake") if not phase_ok[name][0]), None)
-    if failed is None and damaged:
-        failed = "damage"
-    out = {
-        "success": failed is None, "failed_phase": failed, "lift_height_m": lift_height, "slip_m": slip,
-        "max_slip_m": max_slip[0], "damaged": damaged, "damage_measure": damage,
-        "damage_limit": obj.damage_limit,
-        "close_command_rad": close_cmd if grip is None else drive.close_command(grip),
-        "policy": proto.policy, "servo_at_grasp": sensed["grasp"], "servo_at_hold_end": sensed["hold"],
-        "grasp": plan.grasp, "palm_xy_m": [xc, yc], "wrist_yaw_rad": plan.yaw, "pose": plan.pose,
-        "depth_estimate": estimate.to_dict() if estimate is not None else None,
-    }
-    if grip is not None:
-        out.update(drive.controller_outcome(grip))
-    return out
+__all__ = ["Eye", "grasp_height", "run_protocol", "run_trial", "sample_placement"]
