@@ -21,7 +21,7 @@ import numpy as np
 
 from gripper.calibration.contact_check import blocked_tip_force_chain
 from gripper.core.params import GripperParams
-from gripper.experiments.blocked_tip import blocked_tip_force_pneumatic
+from gripper.experiments.blocked_tip import blocked_tip_force
 from gripper.objects.library import get_object
 
 TENSIONS = (0.5, 1.0, 2.0, 5.0, 10.0, 15.0, 20.0, 25.0, 30.0)  # N
@@ -32,7 +32,7 @@ def main() -> None:
     cable = GripperParams()
     pneumatic = cable.replace(actuation=cable.actuation.replace(kind="pneumatic"))
     tips = blocked_tip_force_chain(cable, TENSIONS)
-    tip_250 = float(blocked_tip_force_pneumatic(pneumatic, [pneumatic.pneumatic.command_max])[0])
+    tip_250 = float(blocked_tip_force(pneumatic, [pneumatic.pneumatic.command_max])[0])
     print(f"cable blocked tip [N] at {TENSIONS} N: {np.round(tips, 2).tolist()}; pneumatic at "
           f"{pneumatic.pneumatic.command_max / 1e3:g} kPa: {tip_250:.2f} N")
     print(f"{'run':<10} {'object':<10} {'trials':>6} {'max F N':>8} {'bound N':>8} {'above':>6}")

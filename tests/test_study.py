@@ -8,7 +8,7 @@ from helpers import kill_after_lines, study_records
 
 from gripper.cli.main import main
 from gripper.core.params import GripperParams
-from gripper.experiments.design_responses import blocked_tip_force
+from gripper.experiments.design_responses import measure_responses
 from gripper.studies.study_file import apply_point, gent_modulus, load_study
 
 STUDY = """
@@ -144,8 +144,11 @@ def test_committed_surrogate_is_of_the_default_design():
 
 
 def test_blocked_force_grows_with_shortening():
+    """The study response ``blocked_force``: r is cable shortening over finger length, converted
+    by the drive (gripper.experiments.blocked_tip.blocked_tip_force, a stop at the tip)."""
     p = GripperParams()
-    assert 0.0 < blocked_tip_force(p, 0.05) < blocked_tip_force(p, 0.15)
+    f = [measure_responses(p, {"blocked_force": {"r": r}})[0]["blocked_tip_force_N"] for r in (0.05, 0.15)]
+    assert 0.0 < f[0] < f[1]
 
 
 def test_example_studies_load():

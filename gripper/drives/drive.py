@@ -209,6 +209,11 @@ class Drive(ABC):
     def reach_commands(self) -> np.ndarray:
         """Commands at which the free fingers' reach is tabulated (``gripper.experiments.approach``)."""
 
+    def shortening_command(self, fraction: float) -> float:
+        """The command that draws in ``fraction`` × finger length of the drive's cable (a design
+        study's ``blocked_force.r``); a drive without a cable refuses."""
+        raise ValueError(f"actuation.kind: the {self.kind} drive has no cable to shorten")
+
     # --- closing on an object ---------------------------------------------------------------
     def set_point(self, protocol) -> float:
         return float(getattr(protocol, self.set_point_field))

@@ -1,8 +1,8 @@
 """The responses a design study measures on one design (paper 001's outputs, on this finger):
-the bending curve and its figures, the cable tension for a bending angle, the blocked tip force,
-grasp success, the capability envelope's gripping range, the payload and the everyday parts.
-Pure functions of the parameters: the study layer
-(:mod:`gripper.studies.study`) decides which designs to run.
+the bending curve and its figures, the cable tension for a bending angle, the blocked tip force
+(:func:`gripper.experiments.blocked_tip.blocked_tip_force`: a stop at the tip), grasp success,
+the capability envelope's gripping range, the payload and the everyday parts. Pure functions of
+the parameters: the study layer (:mod:`gripper.studies.study`) decides which designs to run.
 
 Example:
     >>> from gripper.core.params import GripperParams
@@ -18,7 +18,8 @@ from typing import Any
 import numpy as np
 
 from gripper.core.params import GripperParams
-from gripper.core.timesteps import PAPER_BENDING_TIMESTEP
+from gripper.drives import drive_for
+from gripper.experiments.blocked_tip import blocked_tip_force
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.pullout import run_pullout
 from gripper.experiments.trial import run_trial, sample_placement
@@ -28,10 +29,6 @@ from gripper.objects.scene_objects import Placement
 
 # Samples of the bending curve kept per point (r from 0 to r_max).
 BEND_CURVE_POINTS = 21
-# Blocked-force test: ramp the servo to the commanded shortening over this time, then hold [s];
-# both well past the finger's slowest mode (≈ 0.05 s) so the force is static.
-BLOCKED_RAMP_S = 0.5
-BLOCKED_HOLD_S = 0.5
 
 
 def _bending(p: GripperParams, opts: dict):
@@ -40,40 +37,6 @@ def _bending(p: GripperParams, opts: dict):
     cfg = BendingConfig(r_max=float(opts.get("r_max", 0.45)), duration=float(opts.get("duration", 2.0)),
                         n_points=BEND_CURVE_POINTS)
     return run_bending_test(cfg, p)
-
-
-def blocked_tip_force(p: GripperParams, r: float) -> float:
-    """Tip force [N] of one finger whose tip is held at its straight position (a ball joint to
-    the world) while the servo reels in ``r`` × finger length of cable (quasi-static)."""
-    import mujoco
-
-    from gripper.drives.cable.finger import build_bending_spec
-    from gripper.parts.names import FingerNames
-    from gripper.sim.stability import check_stable
-
-    spec = build_bending_spec(p, timestep=PAPER_BENDING_TIMESTEP)
-    names = FingerNames("f0", p.finger.n_segments)
-    m0 = spec.compile()
-    d0 = mujoco.MjData(m0)
-    mujoco.mj_forward(m0, d0)
-    tip_body = m0.body(names.bodies[-1]).id
-    anchor = d0.xmat[tip_body].reshape(3, 3).T @ (d0.site_xpos[m0.site(names.tip).id] - d0.xpos[tip_body])
-    spec.add_equality(type=mujoco.mjtEq.mjEQ_CONNECT, objtype=mujoco.mjtObj.mjOBJ_BODY,
-                      name1=names.bodies[-1], name2="world", data=list(anchor) + [0.0] * 9)
-    m = spec.compile()
-    d = mujoco.MjData(m)
-    servo = m.actuator(names.servo).id
-    target = r * p.finger.length * m.actuator_gear[servo, 0]
-    if target > m.actuator_ctrlrange[servo, 1]:
-        raise ValueError(f"blocked_force.r: {r} needs more than the servo's travel with this spool")
-    n_ramp, n_hold = int(BLOCKED_RAMP_S / m.opt.timestep), int(BLOCKED_HOLD_S / m.opt.timestep)
-    for k in range(n_ramp + n_hold):
-        d.ctrl[servo] = target * min(1.0, (k + 1) / n_ramp)
-        mujoco.mj_step(m, d)
-    check_stable(m, d, "blocked-force test")
-    mujoco.mj_forward(m, d)
-    rows = d.efc_type[:d.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY
-    return float(np.linalg.norm(d.efc_force[:d.nefc][rows]))
 
 
 def success_rate(obj, p: GripperParams, seed: int, protocol: GraspProtocol, trials: int) -> float | None:
@@ -181,8 +144,9 @@ def measure_responses(p: GripperParams, responses: dict, seed: int = 0, *, proto
             ang = np.maximum.accumulate(res.bending_angle_deg)
             met["tension_for_angle_N"] = (float(np.interp(goal, ang, res.tension_N))
                                           if ang[-1] >= goal else None)
-    if "blocked_force" in resp:
-        met["blocked_tip_force_N"] = blocked_tip_force(p, float(resp["blocked_force"].get("r", 0.15)))
+    if "blocked_force" in resp:  # r: cable shortening as a fraction of finger length
+        command = drive_for(p).shortening_command(float(resp["blocked_force"].get("r", 0.15)))
+        met["blocked_tip_force_N"] = float(blocked_tip_force(p, [command])[0])
     if "grasp" in resp:
         g = resp["grasp"]
         for spec in g.get("objects", ["block"]):

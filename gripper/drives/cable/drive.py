@@ -172,6 +172,10 @@ class CableDrive(Drive):
     def reach_commands(self) -> np.ndarray:
         return REACH_ANGLES.copy()
 
+    def shortening_command(self, fraction: float) -> float:
+        """The spool angle that reels in ``fraction`` × finger length of cable [rad]."""
+        return fraction * self.finger_length / self.params.servo.spool_radius
+
     def check_set_point(self, protocol) -> None:
         """With the controller, the set-point against the servo's stall tension; a per-object
         policy has no set-point."""
