@@ -3,7 +3,7 @@
 Example:
     >>> from gripper import GripperParams, run_trial
     >>> rec = run_trial("block", seed=0, index=0, params=GripperParams())   # doctest: +SKIP
-    >>> rec["success"], rec["peak_cable_tension_N"]                         # doctest: +SKIP
+    >>> rec["success"], rec["drive"]["peak_cable_tension_N"]                # doctest: +SKIP
 
 Video, pictures and design studies:
 

@@ -22,6 +22,7 @@ import numpy as np
 from gripper.calibration.contact_check import blocked_tip_force_chain
 from gripper.core.params import GripperParams
 from gripper.experiments.blocked_tip import blocked_tip_force
+from gripper.experiments.record import upgrade_record
 from gripper.objects.library import get_object
 
 TENSIONS = (0.5, 1.0, 2.0, 5.0, 10.0, 15.0, 20.0, 25.0, 30.0)  # N
@@ -37,16 +38,17 @@ def main() -> None:
           f"{pneumatic.pneumatic.command_max / 1e3:g} kPa: {tip_250:.2f} N")
     print(f"{'run':<10} {'object':<10} {'trials':>6} {'max F N':>8} {'bound N':>8} {'above':>6}")
     for folder in sys.argv[1:]:
-        recs = [json.loads(line) for line in (Path(folder) / "trials.jsonl").read_text().splitlines() if line]
+        recs = [upgrade_record(json.loads(line))
+                for line in (Path(folder) / "trials.jsonl").read_text().splitlines() if line]
         for name in dict.fromkeys(r["object"] for r in recs):
             rs = [r for r in recs if r["object"] == name and r["status"] == "ok"]
             weight = get_object(name).mass * (cable.sim.gravity + SHAKE_ACCEL)
             above, worst, bounds = 0, 0.0, []
             for r in rs:
-                if r.get("actuation") == "pneumatic":
-                    finger = tip_250 * r["peak_pressure_Pa"] / pneumatic.pneumatic.command_max
+                if r["drive"]["kind"] == "pneumatic":
+                    finger = tip_250 * r["drive"]["peak_pressure_Pa"] / pneumatic.pneumatic.command_max
                 else:
-                    finger = float(np.interp(r["peak_cable_tension_N"], TENSIONS, tips))
+                    finger = float(np.interp(r["drive"]["peak_cable_tension_N"], TENSIONS, tips))
                 bound = 4 * finger + weight
                 bounds.append(bound)
                 worst = max(worst, r["peak_total_force_N"])

@@ -67,7 +67,7 @@ def test_the_grasp_reads_no_field_of_the_object(monkeypatch):
     a = run_trial(real, seed=1, index=0, placement=place).to_dict()
     b = run_trial(wrong, seed=1, index=0, placement=place).to_dict()
     for key in ("success", "lift_height_m", "max_slip_m", "peak_total_force_N", "peak_finger_force_N",
-                "grasp", "palm_xy_m", "depth_estimate", "servo_at_hold_end", "grasp_time_s"):
+                "grasp", "palm_xy_m", "depth_estimate", "drive", "grasp_time_s"):
         assert a[key] == b[key], key
     assert a["success"]
 

@@ -62,8 +62,8 @@ def test_same_trial_same_readings_and_noise_from_the_trial_seed():
     a = run_trial("block", seed=2, index=1)
     b = run_trial("block", seed=2, index=1)
     c = run_trial("block", seed=2, index=2)
-    assert a.servo_at_hold_end == b.servo_at_hold_end
-    assert a.servo_at_hold_end != c.servo_at_hold_end
+    assert a.drive["at_hold_end"] == b.drive["at_hold_end"]
+    assert a.drive["at_hold_end"] != c.drive["at_hold_end"]
 
 
 @pytest.fixture(scope="module")
@@ -91,10 +91,10 @@ def test_held_tension_stays_within_the_controllers_band(block_sweep):
     tol = 4 * ServoSensing().tension_noise + ServoSensing().tension_resolution
     for g, recs in block_sweep.items():
         for r in recs:
-            t = np.array(r.servo_at_hold_end["tension_N"])
+            t = np.array(r.drive["at_hold_end"]["tension_N"])
             assert np.all(t >= REGRIP_FRACTION * g - tol), (g, t)
             assert np.all(t <= 1.05 * CURRENT_LIMIT_FACTOR * g + tol), (g, t)
-            assert r.grip_tension_N == g
+            assert r.drive["grip_tension_N"] == g
             assert 0 < r.contact_time_s <= r.grasp_time_s < 2.0
 
 
@@ -105,7 +105,8 @@ def test_controller_squeezes_far_less_than_the_stalled_servo():
     stall = run_trial("block", seed=0, index=0, protocol=GraspProtocol(policy="per_object"))
     assert ctrl.success and stall.success
     assert ctrl.peak_total_force_N < 0.6 * stall.peak_total_force_N
-    assert ctrl.policy == "controller" and stall.policy == "per_object" and stall.grip_tension_N is None
+    assert ctrl.policy == "controller" and stall.policy == "per_object" \
+        and "grip_tension_N" not in stall.drive
 
 
 @pytest.mark.parametrize("grip", GRIP_TENSION_RANGE + (GRIP_TENSION,))

@@ -43,8 +43,8 @@ class KnuckleSensor:
 class KnuckleDrive(Drive):
     kind = "knuckle"
     model_name = "knuckle_gripper"
-    set_point_field = "grip_tension"
-    set_point_record = "grip_tension_N"
+    peak_effort_record = "peak_torque_Nm"  # its own key in the record's drive entry
+    command_record = "close_command_rad"
     effort_label = "knuckle torque [N·m]"
 
     n_segments = 2
@@ -164,10 +164,14 @@ def test_a_third_drive_runs_a_grasp_trial(knuckle):
     # the palm camera found the cylinder, the knuckles closed on it to the cylinder's closing
     # command clipped to their travel, every finger pressed it, and it was lifted and held
     assert rec.depth_estimate is not None and rec.grasp == "envelope"
-    assert rec.close_command_rad == pytest.approx(TRAVEL)
+    assert rec.drive["close_command_rad"] == pytest.approx(TRAVEL)
     assert min(rec.peak_finger_force_N) > 0.0
     assert rec.success and rec.lift_height_m >= proto.success_height
-    assert rec.peak_cable_tension_N == 0.0  # no cable
+    # the drive's own entry: its kind, its peak knuckle torque (at most the servo's limit), and
+    # its sensor's readings; nothing of a cable
+    assert rec.drive["kind"] == "knuckle" and 0.0 < rec.drive["peak_torque_Nm"] <= TORQUE + 1e-9
+    assert len(rec.drive["at_grasp"]["torque_Nm"]) == 4
+    assert not any("cable" in key for key in rec.to_dict())
 
 
 def test_a_third_drive_is_refused_where_it_cannot_run(knuckle):

@@ -106,9 +106,10 @@ def test_pneumatic_trial_grasps_the_block():
 
     r = run_trial("block", seed=1, index=0, params=pneumatic())
     assert r["status"] == "ok" and r["success"] and r["warnings"] == 0
-    assert r["actuation"] == "pneumatic" and r["grip_pressure_Pa"] == 250e3
-    assert r["peak_pressure_Pa"] == pytest.approx(250e3, rel=0.01)
-    assert "close_command_rad" not in r and r["grasp_time_s"] is not None
+    assert r["drive"]["kind"] == "pneumatic" and r["drive"]["grip_pressure_Pa"] == 250e3
+    assert r["drive"]["peak_pressure_Pa"] == pytest.approx(250e3, rel=0.01)
+    assert "close_command_Pa" not in r["drive"] and r["grasp_time_s"] is not None
+    assert not any("cable" in key for key in (*r, *r["drive"]))
 
 
 def test_pneumatic_set_points_are_checked():

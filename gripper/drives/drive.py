@@ -72,9 +72,17 @@ class Drive(ABC):
     #: the parameter sections the drive's gripper reads (its model README's table)
     sections: ClassVar[tuple[str, ...]] = ("material", "layout", "lift", "sim", "contact", "actuation")
     #: the :class:`gripper.experiments.protocol.GraspProtocol` field holding the grip set-point
-    set_point_field: ClassVar[str]
-    #: the trial record's key for the set-point a controller gripped at (SI units in its name)
-    set_point_record: ClassVar[str]
+    #: ("": the drive has no grip controller, only per-object commands)
+    set_point_field: ClassVar[str] = ""
+    #: the drive entry's key for the set-point a controller gripped at (SI units in its name)
+    set_point_record: ClassVar[str] = "set_point"
+    #: the drive entry's keys for the trial's peak effort and for the closing command reached
+    #: (SI units in their names; ``gripper.experiments.record``)
+    peak_effort_record: ClassVar[str] = "peak_effort"
+    command_record: ClassVar[str] = "close_command"
+    #: the settings of what the drive reports (a validated dataclass: resolution, noise), or
+    #: None for a drive without any (its sensor then reads the model as it is)
+    sensing_class: ClassVar[type | None] = None
     #: label of the sensed effort in videos, and the factor from SI to its unit there
     effort_label: ClassVar[str]
     effort_display_scale: ClassVar[float] = 1.0
@@ -195,6 +203,21 @@ class Drive(ABC):
     def sensor(self, m: mujoco.MjModel, rng: np.random.Generator | None = None, sensing=None) -> DriveSensor:
         """What the drive reports (``sensing``: the hardware's settings, drive-specific)."""
 
+    def trial_sensing(self, sensing: Any = None) -> Any:
+        """The sensing settings a trial runs this drive with: ``sensing``, which must be this
+        drive's :attr:`sensing_class`, else its defaults; None for a drive without settings.
+
+        Raises:
+            ValueError: another drive's settings, naming the ones this drive takes.
+        """
+        want = self.sensing_class
+        if sensing is None:
+            return want().validate() if want is not None else None
+        if want is None or not isinstance(sensing, want):
+            allowed = want.__name__ if want is not None else "none"
+            raise ValueError(f"sensing: the {self.kind} drive takes {allowed}, got {type(sensing).__name__}")
+        return sensing.validate()
+
     @abstractmethod
     def effort_sensors(self, m: mujoco.MjModel) -> tuple[np.ndarray, np.ndarray]:
         """Sensor addresses and divisors: each finger's true effort (in the set-point's unit: N of
@@ -231,9 +254,18 @@ class Drive(ABC):
         """The per-object ramp's rate [command unit/s] (without a grip controller)."""
 
     def controller_outcome(self, grip: GripControl) -> dict:
-        """What the trial records of its grip controller: the set-point and when the grasp was made."""
+        """What the trial records of its grip controller beside the drive's entry: when the
+        grasp was made (and, where the drive detects it, the first contact)."""
+        return {"grasp_time_s": None if np.isnan(grip.grip_time) else grip.grip_time}
+
+    def command_outcome(self, grip: GripControl | None, close_command: float) -> dict:
+        """The drive entry's closing command: the per-object ``close_command`` (no grip
+        controller), or the controller's set-point and the command it reached."""
+        if grip is None:
+            return {self.command_record: close_command}
+        reached = self.close_command(grip)
         return {self.set_point_record: self.set_point_of(grip),
-                "grasp_time_s": None if np.isnan(grip.grip_time) else grip.grip_time}
+                **({self.command_record: reached} if reached is not None else {})}
 
     def format_set_point(self, value: float) -> str:
         """A set-point for people: in the unit of ``set_point_record``'s name."""
@@ -243,8 +275,8 @@ class Drive(ABC):
         return float(getattr(grip, self.set_point_field))
 
     def close_command(self, grip: GripControl) -> float | None:
-        """The closing command a grip controller reached (the record's ``close_command_rad``), if
-        the drive has one."""
+        """The closing command a grip controller reached (the drive entry's ``command_record``),
+        if the drive has one."""
         return None
 
     @abstractmethod
@@ -252,9 +284,9 @@ class Drive(ABC):
         """The fingertip grasp's gap between the fingertips and the support [m]."""
 
     def trial_outcome(self, peak_effort: float) -> dict:
-        """The drive's entries in a trial record from the trial's peak effort (a drive with no
-        cable records a peak cable tension of 0, as the record's schema asks)."""
-        return {"peak_cable_tension_N": 0.0}
+        """The drive's entry in a trial record (its ``drive`` key): its kind and the trial's
+        peak effort, under the drive's own key."""
+        return {"kind": self.kind, self.peak_effort_record: peak_effort}
 
     # --- the environment ------------------------------------------------------------------
     def observe_state(self, m: mujoco.MjModel, d: mujoco.MjData, sensordata: np.ndarray) -> list[np.ndarray]:

@@ -307,8 +307,9 @@ def outcome(g: Grasp) -> dict[str, Any]:
         "success": failed is None, "failed_phase": failed, "lift_height_m": g.result["lift_height_m"],
         "slip_m": g.result["slip_m"], "max_slip_m": g.max_slip, "damaged": damaged,
         "damage_measure": g.result["damage_measure"], "damage_limit": g.obj.damage_limit,
-        "close_command_rad": g.close_command if g.grip is None else g.drive.close_command(g.grip),
-        "policy": g.proto.policy, "servo_at_grasp": g.sensed["grasp"], "servo_at_hold_end": g.sensed["hold"],
+        "policy": g.proto.policy,
+        "drive": {**g.drive.command_outcome(g.grip, g.close_command),
+                  "at_grasp": g.sensed["grasp"], "at_hold_end": g.sensed["hold"]},
         "grasp": g.plan.grasp, "palm_xy_m": [g.plan.x, g.plan.y], "wrist_yaw_rad": g.plan.yaw, "pose": g.plan.pose,
         "depth_estimate": g.estimate.to_dict() if g.estimate is not None else None,
     }

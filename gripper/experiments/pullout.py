@@ -46,8 +46,9 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     rec = PeakRecorder(probe)
     short = proto.replace(hold_s=0.3, shake_s=0.0)
     grasp = run_protocol(m, d, p, obj, short, probe, rec)
+    drive = drive_for(p)
     out = {"object": obj.name, "slip_m": slip, "rate_N_per_s": rate, "policy": proto.policy,
-           "grip_tension_N": grasp.get("grip_tension_N"), "grip_pressure_Pa": grasp.get("grip_pressure_Pa")}
+           drive.set_point_record: grasp["drive"].get(drive.set_point_record)}
     if grasp["lift_height_m"] < short.success_height:
         # not lifted: a pull down would load the table, not the grasp (until 0.17.0 the pull's
         # upper bound there as held)

@@ -4,6 +4,10 @@ A :class:`TrialRecord` is what :func:`gripper.experiments.trial.run_trial` retur
 each line of a benchmark's ``trials.jsonl`` holds (:meth:`TrialRecord.to_dict`). It is also a
 read-only mapping of those JSON keys, so ``rec["success"]`` and ``rec.success`` are the same.
 
+Each drive reports under one nested ``drive`` entry, with keys of its own (schema 3, gripper
+0.23.0); records of schema 2 (0.9.0-0.22.0), whose cable and pneumatic keys stood at the top
+level, are upgraded when read (:func:`upgrade_record`).
+
 Statuses: ``"ok"`` (the protocol ran to its end: the outcome fields are set), ``"error"``
 (the simulation went unstable: ``error`` says how, ``success`` is None and the trial counts
 neither as a success nor as a failure) or ``"no_object"`` (the palm camera saw nothing on the
@@ -24,23 +28,47 @@ from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-SCHEMA_ID = "gripper.trial_record/2"
+SCHEMA_ID = "gripper.trial_record/3"
 STATUSES = ("ok", "error", "no_object")
 FAILED_PHASES = ("lift", "hold", "shake", "damage")
 # Fields set only when the protocol ran to its end (status "ok").
 REQUIRED_OUTCOME_FIELDS = ("lift_height_m", "slip_m", "max_slip_m", "damaged", "damage_measure",
                            "damage_limit")
-# Added in record schema 2 (gripper 0.9.0): optional, so that older records still read.
-OUTCOME_FIELDS = (*REQUIRED_OUTCOME_FIELDS, "close_command_rad", "policy", "servo_at_grasp", "servo_at_hold_end")
+# Optional outcome fields, set when the protocol ran to its end.
+OUTCOME_FIELDS = (*REQUIRED_OUTCOME_FIELDS, "policy")
 # Added in gripper 0.12.0 (optional): the grasp made, where the palm went, the camera's estimate.
 APPROACH_FIELDS = ("grasp", "palm_xy_m", "depth_estimate")
 # Added in gripper 0.21.0 (optional): the wrist's turn and how the fingers met the footprint.
 WRIST_FIELDS = ("wrist_yaw_rad", "pose")
 # Set only by the grasp controller (policy "controller").
-CONTROLLER_FIELDS = ("grip_tension_N", "contact_time_s", "grasp_time_s")
-# Added in gripper 0.15.0 (optional): the pneumatic gripper's set-point and peak chamber pressure,
-# and which fingers ran (absent: the cable gripper, as every record before).
-PNEUMATIC_FIELDS = ("actuation", "grip_pressure_Pa", "peak_pressure_Pa")
+CONTROLLER_FIELDS = ("contact_time_s", "grasp_time_s")
+# Schema 2's drive keys at the top level, and where schema 3 keeps them in the drive entry
+# (upgrade_record): the cable gripper's, and the pneumatic gripper's from 0.15.0 (with its kind).
+SCHEMA_2_DRIVE_KEYS = {"peak_cable_tension_N": "peak_cable_tension_N", "close_command_rad": "close_command_rad",
+                       "servo_at_grasp": "at_grasp", "servo_at_hold_end": "at_hold_end",
+                       "grip_tension_N": "grip_tension_N", "grip_pressure_Pa": "grip_pressure_Pa",
+                       "peak_pressure_Pa": "peak_pressure_Pa"}
+# The drive of a schema 2 record without ``actuation``, and the keys of schema 2 that the
+# pneumatic gripper wrote with nothing to say (it has no cable).
+SCHEMA_2_DEFAULT_DRIVE = "cable"
+SCHEMA_2_PNEUMATIC_EMPTY = ("peak_cable_tension_N",)
+
+
+def upgrade_record(data: dict[str, Any]) -> dict[str, Any]:
+    """A record of schema 2 (gripper 0.9.0-0.22.0) in schema 3's form: the drive's keys, which
+    stood at the top level, move into the ``drive`` entry with the drive's kind (``actuation``,
+    absent for the cable gripper); the servos' readings are the entry's ``at_grasp`` and
+    ``at_hold_end``. A record that has a ``drive`` entry is returned as it is."""
+    if "drive" in data or not isinstance(data, dict) or "peak_cable_tension_N" not in data:
+        return data
+    out = {k: v for k, v in data.items() if k not in SCHEMA_2_DRIVE_KEYS and k != "actuation"}
+    named = data.get("actuation")  # schema 2 named the pneumatic drive only; the others were the cable's
+    drive = {"kind": named or SCHEMA_2_DEFAULT_DRIVE}
+    for old, new in SCHEMA_2_DRIVE_KEYS.items():
+        if old in data and data[old] is not None and not (named and old in SCHEMA_2_PNEUMATIC_EMPTY):
+            drive[new] = data[old]
+    out["drive"] = drive
+    return out
 
 
 @dataclass(frozen=True)
@@ -71,32 +99,23 @@ class TrialRecord(Mapping[str, Any]):
             the end and its largest value since the end of the lift [m].
         damaged, damage_measure, damage_limit: the object's damage measure (its unit is the
             object's) against its limit.
-        close_command_rad: the servo closing set-point used [rad of spool angle] (None for the
-            pneumatic gripper, whose set-point is ``grip_pressure_Pa``); under the
-            controller, the largest goal position when the close phase ended.
         policy: ``controller`` or ``per_object``.
-        servo_at_grasp, servo_at_hold_end: the servos' sensed state at the end of the close
-            phase and of the hold (:class:`gripper.drives.cable.sensing.ServoReading`: ``position_rad``,
-            ``current_A``, ``load``, ``tension_N``, one entry per finger); for the pneumatic
-            gripper the regulators' (:class:`gripper.drives.pneumatic.sensing.PressureReading`:
-            ``pressure_Pa``).
+        drive: the drive's entry: its ``kind`` and what it reports under keys of its own
+            (``Drive.trial_outcome``, ``Drive.command_outcome``): its peak effort, its closing
+            command or set-point, its sensed state at the end of the close phase and of the hold
+            (``at_grasp``, ``at_hold_end``, one entry per finger).
         grasp: ``envelope`` or ``fingertip`` (gripper.experiments.approach).
         palm_xy_m: where the approach put the palm over the table [m].
         wrist_yaw_rad: the wrist's turn [rad]; pose: ``none``, ``across`` or ``straddle``
             (gripper.experiments.approach).
-        depth_estimate: the palm camera's estimate (:class:`gripper.sim.depth.ObjectEstimate`
-            as a dict; None under the catalogue approach).
-        grip_tension_N: the controller's set-point [N] (controller only).
+        depth_estimate: the palm camera's estimate (``ObjectEstimate`` as a dict; None under
+            the catalogue approach).
         contact_time_s: from the start of closing to the first finger's detected contact [s]
             (controller only; None if none was detected).
         grasp_time_s: from the start of closing until every finger held its set-point or the
-            end of the servo's travel [s] (controller only; None if that never happened).
+            end of its travel [s] (controller only; None if that never happened).
         error: what went unstable (status ``error``), or what the camera saw (``no_object``).
-        peak_total_force_N, peak_finger_force_N, peak_cable_tension_N: peaks over the trial
-            (the pneumatic gripper has no cable: its tension is 0).
-        actuation: ``pneumatic`` for the pneumatic gripper (absent: the cable gripper).
-        grip_pressure_Pa: the pneumatic controller's pressure set-point [Pa].
-        peak_pressure_Pa: the highest chamber pressure any finger reached [Pa].
+        peak_total_force_N, peak_finger_force_N: peaks over the trial.
         warnings: MuJoCo warnings raised.
         sim_time_s, wall_time_s: simulated and wall-clock time.
         run_config_hash: the benchmark run's configuration hash (set by the benchmark).
@@ -114,7 +133,7 @@ class TrialRecord(Mapping[str, Any]):
     failed_phase: str | None
     peak_total_force_N: float
     peak_finger_force_N: list[float]
-    peak_cable_tension_N: float
+    drive: dict[str, Any]
     warnings: int
     sim_time_s: float
     wall_time_s: float
@@ -124,21 +143,14 @@ class TrialRecord(Mapping[str, Any]):
     damaged: bool | None = None
     damage_measure: float | None = None
     damage_limit: float | None = None
-    close_command_rad: float | None = None
     policy: str | None = None
-    servo_at_grasp: dict[str, list[float]] | None = None
-    servo_at_hold_end: dict[str, list[float]] | None = None
     grasp: str | None = None
     palm_xy_m: list[float] | None = None
     depth_estimate: dict[str, float] | None = None
     wrist_yaw_rad: float | None = None
     pose: str | None = None
-    grip_tension_N: float | None = None
     contact_time_s: float | None = None
     grasp_time_s: float | None = None
-    actuation: str | None = None
-    grip_pressure_Pa: float | None = None
-    peak_pressure_Pa: float | None = None
     error: str | None = None
     run_config_hash: str | None = None
 
@@ -151,22 +163,23 @@ class TrialRecord(Mapping[str, Any]):
             v = getattr(self, f.name)
             if f.name in (*OUTCOME_FIELDS, *APPROACH_FIELDS, *WRIST_FIELDS) and self.status != "ok":
                 continue
-            if f.name in ("error", "run_config_hash", *CONTROLLER_FIELDS, *APPROACH_FIELDS, *WRIST_FIELDS,
-                          *PNEUMATIC_FIELDS,
-                          "close_command_rad") and v is None:
+            if f.name in ("error", "run_config_hash", *CONTROLLER_FIELDS, *APPROACH_FIELDS, *WRIST_FIELDS) \
+                    and v is None:
                 continue
             out[f.name] = v
         return out
 
     @classmethod
     def from_dict(cls, data: Any, *, where: str = "trial record") -> TrialRecord:
-        """Parse and check a record read back (e.g. a line of ``trials.jsonl``).
+        """Parse and check a record read back (e.g. a line of ``trials.jsonl``); a record of
+        schema 2 is upgraded first (:func:`upgrade_record`).
 
         Raises:
             ValueError: naming ``where`` and the key that is missing, unknown or of the wrong type.
         """
         if not isinstance(data, dict):
             raise ValueError(f"{where}: expected a JSON object, got {type(data).__name__}")
+        data = upgrade_record(data)
         schema = cls.json_schema()
         props, required = schema["properties"], set(schema["required"])
         unknown = sorted(set(data) - set(props))
@@ -190,11 +203,13 @@ class TrialRecord(Mapping[str, Any]):
         props: dict[str, Any] = {}
         required = []
         for f in dataclasses.fields(cls):
-            props[f.name] = _schema_of(hints[f.name])
+            props[f.name] = _schema_of(hints[f.name]) if f.name != "drive" else {}
             if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
                 required.append(f.name)
         props["status"] = {"enum": list(STATUSES)}
         props["failed_phase"] = {"enum": [*FAILED_PHASES, None]}
+        props["drive"] = {"type": "object", "required": ["kind"], "properties": {"kind": {"type": "string"}},
+                          "additionalProperties": True}
         props["perturbation"] = {"type": "object", "additionalProperties": False,
                                  "required": [f.name for f in dataclasses.fields(Perturbation)],
                                  "properties": {f.name: {"type": "number"}
@@ -251,6 +266,9 @@ def _matches(value: Any, schema: dict[str, Any]) -> bool:
         if kind == "array" and isinstance(value, list):
             return all(_matches(v, schema["items"]) for v in value)
         if kind == "object" and isinstance(value, dict):
+            if schema.get("additionalProperties") is True:  # named keys checked, the rest free
+                return (set(schema["required"]) <= set(value)
+                        and all(_matches(value[k], sub) for k, sub in schema["properties"].items() if k in value))
             if "properties" in schema:
                 return (set(value) == set(schema["required"])
                         and all(_matches(v, schema["properties"][k]) for k, v in value.items()))

@@ -32,7 +32,6 @@ from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
 from gripper.core.ranges import INDEX_MAX, SEED_MAX
 from gripper.drives import drive_for
-from gripper.drives.cable.sensing import ServoSensing
 from gripper.experiments.grasp_phases import grasp_height, run_phases
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
@@ -61,12 +60,13 @@ def sample_placement(obj: GraspObject, noise: TrialNoise, seed: int, index: int)
 def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
               params: GripperParams | None = None, protocol: GraspProtocol | None = None,
               noise: TrialNoise | None = None, placement: Placement | None = None,
-              sensing: ServoSensing | None = None, camera: DepthCamera | None = None,
+              sensing: Any = None, camera: DepthCamera | None = None,
               frame_sink=None) -> TrialRecord:
     """Run one scripted grasp trial; return its record (:class:`TrialRecord`, SI units).
 
     ``placement`` overrides the sampled perturbation; ``sensing`` the drive's sensor model (the
-    cable drive's :class:`ServoSensing`; a drive ignores another's) and
+    drive's own settings, ``Drive.sensing_class``: the cable drive's ``ServoSensing``, the
+    pneumatic drive's ``PressureSensing``) and
     ``camera`` the palm camera's (their noise is drawn from generators seeded by seed, index and
     object name). The grasp itself reads no field of the object: under the default
     ``protocol.approach = "sensed"`` the palm camera finds it, and a table where the camera sees
@@ -81,14 +81,15 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
     check_int("index", index, 0, INDEX_MAX)
     for name, value, cls in (("params", params, GripperParams), ("protocol", protocol, GraspProtocol),
                              ("noise", noise, TrialNoise), ("placement", placement, Placement),
-                             ("sensing", sensing, ServoSensing), ("camera", camera, DepthCamera)):
+                             ("camera", camera, DepthCamera)):
         check_instance(name, value, cls)
     obj = get_object(obj) if isinstance(obj, str) else obj.validate()
     proto = (protocol or GraspProtocol()).validate()
     p = (params or GripperParams()).validate()
     p = trial_params(p, proto.timestep).validate()
     noise = (noise or TrialNoise()).validate()
-    sensing = (sensing or ServoSensing()).validate()
+    drive = drive_for(p)
+    sensing = drive.trial_sensing(sensing)
     camera = (camera or DepthCamera()).validate()
     place = placement.validate() if placement is not None else sample_placement(obj, noise, seed, index)
     head: dict[str, Any] = {
@@ -96,14 +97,13 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
         "perturbation": {"x_m": place.x, "y_m": place.y, "yaw_rad": place.yaw,
                          "mass_scale": place.mass_scale, "friction_scale": place.friction_scale},
         "config_hash": stable_hash([p.to_dict(), proto.to_dict(), noise.to_dict(), obj.to_dict(),
-                                   sensing.to_dict(), camera.to_dict()]),
+                                   sensing.to_dict() if sensing is not None else None, camera.to_dict()]),
         "versions": versions(),
     }
     wall0 = time.perf_counter()
     m = build_grasp_scene(p, obj, place)
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
-    drive = drive_for(p)
     probe = ObjectProbe(m, obj, p.layout.n_fingers, drive)
     rec = PeakRecorder(probe)
     if frame_sink is not None:
@@ -117,7 +117,7 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
         outcome = {"status": "no_object", "success": None, "failed_phase": None, "error": str(e)}
     except SimulationUnstable as e:
         outcome = {"status": "error", "success": None, "failed_phase": None, "error": str(e)}
-    outcome.update(drive.trial_outcome(rec.peak_effort))
+    outcome["drive"] = {**drive.trial_outcome(rec.peak_effort), **outcome.get("drive", {})}
     return TrialRecord(
         **head, **outcome,
         peak_total_force_N=rec.peak_total, peak_finger_force_N=rec.peak_finger.tolist(),

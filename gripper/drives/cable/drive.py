@@ -63,6 +63,9 @@ class CableDrive(Drive):
     sections = ("finger", "material", "springs", "cable", "servo", "layout", "lift", "sim", "contact", "actuation")
     set_point_field = "grip_tension"
     set_point_record = "grip_tension_N"
+    peak_effort_record = "peak_cable_tension_N"
+    command_record = "close_command_rad"
+    sensing_class = ServoSensing
     effort_label = "cable tension [N]"
     responses = ("bending", "tension_for_angle", "blocked_force", "grasp", "holding_force", "envelope", "payload",
                  "parts")
@@ -204,9 +207,6 @@ class CableDrive(Drive):
 
     def fingertip_clearance(self, protocol) -> float:
         return protocol.fingertip_clearance
-
-    def trial_outcome(self, peak_effort: float) -> dict:
-        return {"peak_cable_tension_N": peak_effort}
 
     def _indices(self, m: mujoco.MjModel) -> dict[str, np.ndarray]:
         if self._index is None or self._index[0] is not m:

@@ -46,6 +46,9 @@ class PneumaticDrive(Drive):
     sections = ("pneumatic", "material", "layout", "lift", "sim", "contact", "actuation")
     set_point_field = "grip_pressure"
     set_point_record = "grip_pressure_Pa"
+    peak_effort_record = "peak_pressure_Pa"
+    command_record = "close_command_Pa"
+    sensing_class = PressureSensing
     effort_label = "chamber pressure [kPa]"
     effort_display_scale = 1e-3
     effort_format = "4.0f"
@@ -135,9 +138,9 @@ class PneumaticDrive(Drive):
         return segment_lengths(pf)[j - 1] * pf.width
 
     def sensor(self, m, rng=None, sensing=None) -> PressureSensor:
-        """The regulators' monitor outputs (``sensing``: a :class:`PressureSensing`; another
-        drive's sensing, such as the trial's default servo sensing, is not this drive's)."""
-        return PressureSensor(m, self.params, sensing if isinstance(sensing, PressureSensing) else None, rng=rng)
+        """The regulators' monitor outputs (``sensing``: a :class:`PressureSensing`, default
+        its defaults)."""
+        return PressureSensor(m, self.params, sensing, rng=rng)
 
     def effort_sensors(self, m):
         n = self.params.layout.n_fingers
@@ -170,9 +173,6 @@ class PneumaticDrive(Drive):
 
     def fingertip_clearance(self, protocol) -> float:
         return protocol.pneumatic_fingertip_clearance
-
-    def trial_outcome(self, peak_effort: float) -> dict:
-        return {"peak_cable_tension_N": 0.0, "actuation": self.kind, "peak_pressure_Pa": peak_effort}
 
     def _indices(self, m: mujoco.MjModel) -> tuple[PressureSensor, np.ndarray]:
         if self._index is None or self._index[0] is not m:
