@@ -13,12 +13,12 @@ from scipy.spatial import ConvexHull
 from gripper.calibration.calfile import design_hash
 from gripper.core.params import GripperParams
 from gripper.drives.cable.geometry import element_face, element_profile, element_vertices
-from gripper.experiments.approach import open_radius, straddle_gap, wrist_turn
+from gripper.experiments.approach import STRADDLE_MARGIN, check_fits_opening, open_radius, straddle_gap, wrist_turn
 from gripper.experiments.design_responses import envelope_range
 from gripper.experiments.protocol import GraspProtocol
 from gripper.model.builders import WRIST, build_scene_spec
 from gripper.objects.everyday_parts import PARTS, everyday_part, part_mesh
-from gripper.objects.grasp_object import STRADDLE_HALF_WIDTH, GraspObject
+from gripper.objects.grasp_object import GraspObject
 from gripper.sim.depth import ObjectEstimate
 from gripper.studies.study_file import apply_point, load_study, metric_names
 
@@ -158,12 +158,13 @@ def test_without_the_wrist_the_model_has_no_wrist():
 def test_a_long_narrow_part_is_accepted_for_straddling_and_a_wide_one_refused():
     pen = GraspObject(name="rod", kind="rigid_box", size=(0.065, 0.004, 0.004), mass=0.006, friction=0.6,
                       yaw_symmetric=False, close_command=3.0, damage="none", damage_limit=0.0)
-    assert pen.validate() is pen
-    slab = GraspObject(name="slab", kind="rigid_box", size=(0.065, STRADDLE_HALF_WIDTH + 0.002, 0.004),
+    p = GripperParams()
+    assert check_fits_opening(pen.validate(), p) is pen
+    slab = GraspObject(name="slab", kind="rigid_box", size=(0.065, straddle_gap(p) - STRADDLE_MARGIN + 0.002, 0.004),
                        mass=0.05, friction=0.6, yaw_symmetric=False, close_command=3.0, damage="none",
-                       damage_limit=0.0)
+                       damage_limit=0.0).validate()
     with pytest.raises(ValueError, match=r"object\.slab\.size: .*straddle a part up to"):
-        slab.validate()
+        check_fits_opening(slab, p)
 
 
 @pytest.mark.parametrize("name", list(PARTS))

@@ -12,11 +12,12 @@ import pytest
 import trimesh
 
 from gripper.bench.benchmark import BenchConfig, read_trials, run_benchmark
+from gripper.core.params import GripperParams
 from gripper.core.resources import OBJECTS_DIR
+from gripper.experiments.approach import STRADDLE_MARGIN, check_fits_opening, open_radius, straddle_gap
 from gripper.experiments.protocol import GraspProtocol
 from gripper.experiments.trial import run_trial
 from gripper.objects.files import load_object_file
-from gripper.objects.grasp_object import APERTURE_RADIUS, STRADDLE_HALF_WIDTH
 from gripper.objects.library import get_object, mesh_object
 
 SHORT = GraspProtocol(hold_s=0.2, shake_s=0.2)
@@ -123,18 +124,25 @@ def test_a_repairable_mesh_runs_and_a_hopeless_one_is_refused(tmp_path):
 
 
 def test_a_round_mesh_is_sized_by_its_footprint_not_its_bounding_box(tmp_path):
+    APERTURE_RADIUS = open_radius(GripperParams())  # noqa: N806 (the default design's opening)
+    STRADDLE_HALF_WIDTH = straddle_gap(GripperParams()) - STRADDLE_MARGIN  # noqa: N806
     r = 0.85 * APERTURE_RADIUS  # its bounding box's half-diagonal 1.2 times the aperture, its footprint inside
     trimesh.creation.cylinder(radius=r, height=0.05, sections=48).export(tmp_path / "round.stl")
-    obj = mesh_object(tmp_path / "round.stl")
+    obj = check_fits_opening(mesh_object(tmp_path / "round.stl"), GripperParams())
     assert np.hypot(obj.size[0], obj.size[1]) > APERTURE_RADIUS
     assert obj.half_width == pytest.approx(r, rel=1e-3)
     half = 0.8 * APERTURE_RADIUS  # a square: its half-diagonal outside, its half-width too wide to straddle
     assert half > STRADDLE_HALF_WIDTH
     _box_stl(tmp_path / "wide.stl", half=(half, half, 0.02))
     with pytest.raises(ValueError, match=rf"{math.hypot(half, half):.3f} m over all yaws and its half-width "
-                                         rf"{half:.3f} m; the open fingers of the default design leave "
+                                         rf"{half:.3f} m; the open fingers of this design leave "
                                          rf"{APERTURE_RADIUS:.3f} m, or straddle"):
-        mesh_object(tmp_path / "wide.stl")
+        check_fits_opening(mesh_object(tmp_path / "wide.stl"), GripperParams())
+    # the pneumatic gripper's fingers stand wider open: it takes the part (issue 58: the opening
+    # is the design's in use, not the default cable design's frozen at import)
+    pneumatic = GripperParams().replace(actuation=GripperParams().actuation.replace(kind="pneumatic"))
+    assert open_radius(pneumatic) > math.hypot(half, half)
+    check_fits_opening(mesh_object(tmp_path / "wide.stl"), pneumatic)
 
 
 # A zipper bag's object table and material, without its contents.

@@ -8,16 +8,17 @@ import trimesh
 from gripper.bench.benchmark import wilson_interval
 from gripper.core.params import GripperParams
 from gripper.drives import drive_for
-from gripper.objects.library import DEFAULT_OBJECTS, LIBRARY, get_object, mesh_object
+from gripper.objects.library import DEFAULT_OBJECTS, get_object, mesh_object
 from gripper.objects.scene_objects import Placement
 
 
 def test_library_fits_the_aperture_with_placement_noise():
-    # the open fingers' faces stand APERTURE_RADIUS from the axis at their tips; trials offset objects by 10 mm
-    from gripper.objects.grasp_object import APERTURE_RADIUS
+    # the open fingers' faces stand open_radius from the axis at their tips; trials offset objects by 10 mm
+    from gripper.experiments.approach import open_radius
+    from gripper.objects.library import library
 
-    aperture = APERTURE_RADIUS
-    for obj in LIBRARY.values():
+    aperture = open_radius(GripperParams())
+    for obj in library().values():
         obj.validate()
         assert obj.half_width + 0.010 < aperture, obj.name
         assert obj.height < GripperParams().finger.length, obj.name

@@ -48,6 +48,7 @@ from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
 from gripper.core.ranges import SEED_MAX, TRIALS_MAX
 from gripper.drives import drive_for
+from gripper.experiments.approach import check_fits_opening
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
 from gripper.experiments.trial import run_trial
@@ -109,6 +110,8 @@ class BenchConfig(Validated):
         self.params.validate()
         self.protocol.validate()
         self.noise.validate()
+        for obj in self._resolved.values():  # each fits this design's opening
+            check_fits_opening(obj, self.params)
 
         drive_for(self.params).check_set_point(self.protocol)
         return self

@@ -38,6 +38,7 @@ from gripper.envs.config import (
     XY_ACTION_RANGE,
     EnvConfig,
 )
+from gripper.experiments.approach import check_fits_opening
 from gripper.experiments.protocol import TrialNoise, is_held
 from gripper.experiments.trial import sample_placement
 from gripper.objects.grasp_object import GraspObject
@@ -249,7 +250,7 @@ class SceneSet:
 
     def __init__(self, cfg: EnvConfig):
         self.cfg = cfg
-        self.objects = [get_object(n) for n in cfg.objects]
+        self.objects = [check_fits_opening(get_object(n), cfg.params) for n in cfg.objects]
         self._rigid = {o.name: Scene(cfg, o, Placement()) for o in self.objects if not o.is_flex}
 
     @staticmethod

@@ -108,6 +108,17 @@ def straddle_gap(p: GripperParams) -> float:
     return open_radius(p) * math.sin(math.pi / n) - 0.5 * drive_for(p).finger_width * math.cos(math.pi / n)
 
 
+def check_fits_opening(obj, p: GripperParams):
+    """``obj`` if the design ``p`` can take it: its footprint inside the open fingers
+    (:func:`open_radius`), or a long part the wrist straddles (:func:`straddle_gap` less
+    :data:`STRADDLE_MARGIN`), or an oversize object (``GraspObject.check_fits``).
+
+    Raises:
+        ValueError: one line naming the object, its size and this design's opening.
+    """
+    return obj.check_fits(open_radius(p), straddle_gap(p) - STRADDLE_MARGIN)
+
+
 def wrist_turn(est: ObjectEstimate, p: GripperParams, proto) -> tuple[float, str]:
     """The wrist's angle [rad], in [-π/n, π/n), and the pose (:data:`POSES`) of the module
     docstring for the estimate ``est``."""

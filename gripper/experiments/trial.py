@@ -32,6 +32,7 @@ from gripper.core.params import GripperParams
 from gripper.core.provenance import versions
 from gripper.core.ranges import INDEX_MAX, SEED_MAX
 from gripper.drives import drive_for
+from gripper.experiments.approach import check_fits_opening
 from gripper.experiments.grasp_phases import grasp_height, run_phases
 from gripper.experiments.protocol import GraspProtocol, TrialNoise
 from gripper.experiments.record import TrialRecord
@@ -87,6 +88,7 @@ def run_trial(obj: str | GraspObject, seed: int = 0, index: int = 0, *,
     proto = (protocol or GraspProtocol()).validate()
     p = (params or GripperParams()).validate()
     p = trial_params(p, proto.timestep).validate()
+    check_fits_opening(obj, p)
     noise = (noise or TrialNoise()).validate()
     drive = drive_for(p)
     sensing = drive.trial_sensing(sensing)

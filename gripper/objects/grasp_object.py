@@ -1,10 +1,11 @@
 """What a grasp object is: its kind, size, mass, friction, damage criterion and, for the
 deformable kinds, material and mesh (SI units), validated once.
 
-Every object is sized to the default gripper's aperture: with straight fingers the grasping
-faces stand the palm radius from the palm axis, and an object's horizontal half-extent (its
-half-diagonal where yaw is sampled) must fit inside, unless it is marked oversize or is a long
-part whose half-width the wrist can straddle (:data:`STRADDLE_HALF_WIDTH`).
+An object must fit the opening of the gripper that grasps it: its horizontal half-extent (its
+half-diagonal where yaw is sampled) inside the open fingers' grasping faces, unless it is
+marked oversize or is a long part whose half-width the wrist can straddle
+(:meth:`GraspObject.check_fits`, with the design's opening from
+``gripper.experiments.approach.check_fits_opening``).
 
 Example:
     >>> from gripper.objects.library import get_object
@@ -15,11 +16,9 @@ Example:
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 
 from gripper.core.fields import Validated, check_safe_name
-from gripper.core.params import FingerGeometry, GripperLayout
 from gripper.core.ranges import (
     CLOSE_COMMAND,
     FILM_THICKNESS,
@@ -33,17 +32,6 @@ from gripper.objects.kinds import ObjectKind, object_kind, registered_kinds
 
 # The ranges of the material fields a kind may need (ObjectKind.material_fields).
 MATERIAL_RANGES = {"youngs_modulus": OBJECT_MODULUS, "thickness": FILM_THICKNESS, "yield_strain": YIELD_STRAIN}
-
-# The open fingers' grasping faces stand this far from the palm axis at their tips in the default
-# design (gripper.experiments.approach.open_radius: the palm radius plus the splay of the fingers'
-# length): an object's horizontal footprint must fit inside [m], or be straddled.
-APERTURE_RADIUS = GripperLayout().palm_radius + FingerGeometry().length * math.sin(
-    math.radians(GripperLayout().mount_tilt_deg))
-# A longer part is straddled (gripper.experiments.approach): its long axis between two
-# neighbouring fingers of the default design, so its half-width must stay this far inside their
-# nearest corners, R sin 45° - (w/2) cos 45°, less the approach's 3 mm margin [m].
-STRADDLE_HALF_WIDTH = (APERTURE_RADIUS - 0.5 * FingerGeometry().width) * math.sqrt(0.5) - 0.003
-
 
 MESH_SPEC_MAX = 255  # characters of a ``mesh:PATH[::MASS]`` name, a file system's name limit
 
@@ -186,15 +174,21 @@ class GraspObject(Validated):
             raise ValueError(f"{where}.contents: only a {' or '.join(holders)} holds loose contents, "
                              f"this is a {self.kind}")
         kind.check(self, where)
-        straddled = min(self.size[0], self.size[1]) <= STRADDLE_HALF_WIDTH
-        if self.half_width > APERTURE_RADIUS and not self.oversize and not straddled:
-            what = "hull footprint radius" if self.footprint_radius > 0 else \
-                "horizontal half-extent"
-            raise ValueError(f"{where}.size: its {what} is {self.half_width:.3f} m over all yaws and its half-width "
-                             f"{min(self.size[0], self.size[1]):.3f} m; the open fingers of the default design "
-                             f"leave {APERTURE_RADIUS:.3f} m, or straddle a part up to {STRADDLE_HALF_WIDTH:.4f} m "
-                             "half-wide: scale the object down (a round part: declare it yaw_symmetric, so its "
-                             "radius counts)")
+        return self
+
+    def check_fits(self, opening: float, straddle_half_width: float) -> GraspObject:
+        """Refuse an object the gripper cannot take: its horizontal footprint (over all yaws)
+        wider than the open fingers' ``opening`` radius [m], unless it is marked oversize, or
+        a long part no more than ``straddle_half_width`` [m] half-wide, which the wrist
+        straddles (both from the design in use: ``gripper.experiments.approach.check_fits_opening``).
+        Return ``self``."""
+        straddled = min(self.size[0], self.size[1]) <= straddle_half_width
+        if self.half_width > opening and not self.oversize and not straddled:
+            what = "hull footprint radius" if self.footprint_radius > 0 else "horizontal half-extent"
+            raise ValueError(f"object.{self.name}.size: its {what} is {self.half_width:.3f} m over all yaws and its "
+                             f"half-width {min(self.size[0], self.size[1]):.3f} m; the open fingers of this design "
+                             f"leave {opening:.3f} m, or straddle a part up to {straddle_half_width:.4f} m half-wide: "
+                             "scale the object down (a round part: declare it yaw_symmetric, so its radius counts)")
         return self
 
     def to_dict(self) -> dict:
