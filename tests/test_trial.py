@@ -152,7 +152,7 @@ def _close_on(name, *, at_grasp_height=False, placed_as=None):
     mujoco.mj_forward(m, d)
     probe = probes_mod.ObjectProbe(m, obj, p.layout.n_fingers, drive_for(p))
     stepper = stepping_mod.ChunkStepper(m, d)
-    u[:, probe.servo] = 2.0  # close on the object
+    u[:, probe.actuators] = 2.0  # close on the object
     stepper.step(u)
     fresh = mujoco.MjData(m)
     mujoco.mj_setState(m, fresh, stepper.last_states[-1], stepping_mod.STATE_SPEC)

@@ -630,7 +630,7 @@ class PadContact(Validated):
     against springs in N/m that follow Hertz's law for the silicone (E* = E / (1 - nu^2): paper
     000 Table 2 for the cable finger, 6 C10 of paper 001's Yeoh fit with nu = 0.5 for the
     pneumatic one), and the part's contact is made near-rigid, so the force-indentation is the
-    material's whatever the part weighs. ``"solver"``: 0.16.0's contact, MuJoCo's default
+    material's whatever the part weighs. ``"solver"``: the earlier contact, MuJoCo's default
     softness on the element itself (its stiffness scales with the contact's effective mass),
     kept for comparison.
 

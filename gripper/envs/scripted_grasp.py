@@ -7,9 +7,9 @@ object (``object_pos_rel_palm``); it lowers the palm until the fingertips are 8 
 floor; it then reels all cables in at 2 rad/s of spool (the protocol's closing rate) until every
 finger's sensed spool tension reaches the protocol's set-point (5 N, as the benchmark's grasp
 controller), or to 3.0 rad (the object library's rigid closing angle), and then it lifts the palm
-to its home height at the palm's full speed and holds. (Until 0.16.0 it always reeled to
-3.0 rad, where the servos stall: with 0.17.0's pads, stiff as the silicone, that squeezed the
-cylinder to its 200 N damage limit.) Each phase is read from the
+to its home height at the palm's full speed and holds (reeling always to 3.0 rad, where the
+servos stall, squeezed the cylinder to its 200 N damage limit on the silicone's pads; the
+CHANGELOG has the history). Each phase is read from the
 observed set-points (``servo_setpoint``, ``palm_setpoint``), which the environment integrates
 from the velocity actions, so the state says where in the grasp the policy is.
 

@@ -147,7 +147,7 @@ class Scene:
                        if mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, a) >= 0}
         sadr = lambda name: m.sensor_adr[m.sensor(name).id]  # noqa: E731
         self.pads = np.array([sadr(pad) for n in names for pad in n.pads])
-        self.drive_act = self.probe.servo  # each finger's drive actuator: its servo, its chamber's regulator, ...
+        self.drive_act = self.probe.actuators  # each finger's drive actuator (a servo, a chamber's regulator, ...)
         self.sensor = drive.sensor(m)
         self.act_lift = {a: m.actuator(a).id for a in self.lift_q}
         self.lift_act_ids = np.array(list(self.act_lift.values()))

@@ -95,7 +95,7 @@ class ApproachPlan:
 def open_radius(p: GripperParams) -> float:
     """How far the open, straight fingers' grasping faces stand from the palm axis at their tips
     [m]: the palm radius plus the finger's length times the sine of its splay
-    (``layout.mount_tilt_deg``; 40 mm for the 0.20.0 design, whose fingers hang straight)."""
+    (``layout.mount_tilt_deg``; 40 mm for a 40 mm palm whose fingers hang straight)."""
     return p.layout.palm_radius + drive_for(p).finger_length * math.sin(math.radians(p.layout.mount_tilt_deg))
 
 
@@ -187,7 +187,7 @@ def _simulate_reach(p: GripperParams):
     m = spec.compile()
     d = mujoco.MjData(m)
     drive = drive_for(p)
-    servo = drive.actuator_ids(m)
+    actuators = drive.actuator_ids(m)
     palm = m.body("palm").id
     geoms = [g for g in range(m.ngeom) if m.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH
              and m.geom_contype[g] and m.body(m.geom_bodyid[g]).name.startswith("f")]
@@ -196,7 +196,7 @@ def _simulate_reach(p: GripperParams):
     low, radial = [], []
     commands = drive.reach_commands()
     for a in commands:
-        d.ctrl[servo] = a
+        d.ctrl[actuators] = a
         for _ in range(steps):
             mujoco.mj_step(m, d)
         zs, rs = [], []
@@ -211,11 +211,11 @@ def _simulate_reach(p: GripperParams):
     return commands, np.asarray(low), np.asarray(radial)
 
 
-def fingertip_palm_z(plan: ApproachPlan, p: GripperParams, proto, spool: np.ndarray) -> np.ndarray:
+def fingertip_palm_z(plan: ApproachPlan, p: GripperParams, proto, command: np.ndarray) -> np.ndarray:
     """Palm-face height [m] that keeps the fingers' lowest point ``fingertip_clearance`` above
-    the support at drive commands ``spool`` (spool angles [rad], or pressures [Pa] for the
-    pneumatic gripper; the deepest-reaching finger counts), never below ``plan.floor_z``."""
-    angles, low, _ = finger_reach(p)
-    reach = np.interp(spool, angles, low)
+    the support at drive ``command`` values (the drive's unit: a spool angle [rad], a pressure [Pa];
+    the deepest-reaching finger counts), never below ``plan.floor_z``."""
+    commands, low, _ = finger_reach(p)
+    reach = np.interp(command, commands, low)
     return np.maximum(plan.support_z + drive_for(p).fingertip_clearance(proto) + reach, plan.floor_z)
 

@@ -56,7 +56,7 @@ class Grasp:
     def __post_init__(self):
         m = self.stepper.m
         self.drive = self.probe.drive
-        self.travel = float(m.actuator_ctrlrange[self.probe.servo[0], 1])
+        self.travel = float(m.actuator_ctrlrange[self.probe.actuators[0], 1])
         self.close_rate = self.drive.open_loop_rate(self.proto)  # per-object ramp [command unit/s]
         self.drive.check_set_point(self.proto)
         self.grip = self.drive.grip_controller(m, self.sensor, self.proto)
@@ -85,7 +85,7 @@ class Grasp:
             if self.wrist is not None:
                 u[:, self.wrist] = self.turn if yaw is None else yaw(t)
             s = np.asarray(command(t) if callable(command) else command, dtype=float)
-            u[:, probe.servo] = s[:, None] if s.ndim == 1 else s
+            u[:, probe.actuators] = s[:, None] if s.ndim == 1 else s
             u[:, probe.lift_z] = z(t) if callable(z) else z
             if x is not None:
                 u[:, probe.lift_x] = x(t) if callable(x) else x

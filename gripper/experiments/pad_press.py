@@ -3,7 +3,7 @@ it, to check against Hertz's closed form (:func:`gripper.parts.pads.hertz_law`).
 
 One element of the finger (the cable finger's middle element, or the pneumatic finger's full
 segment) is fixed with its grasping face up, on its pad exactly as the grippers build it (with
-``contact.model = "solver"``: the element's own surface, 0.16.0's contact); a rigid
+``contact.model = "solver"``: the element's own surface, the solver's contact); a rigid
 flat plate of mass ``part_mass`` rests on the face and is pressed down by a force. Gravity is
 off, so the force is the contact's whatever the part weighs; the indentation is how far the plate
 has moved towards the element since first touch (the pad's slide plus the contact's own

@@ -4,8 +4,8 @@ Within a chunk of ``protocol.chunk_steps`` steps every command is a function of 
 phase is stepped with ``mujoco.rollout`` chunk by chunk on the trial's own ``MjData``; between
 chunks the runner checks stability (MuJoCo warnings, non-finite state), slip and damage, and the
 drive's grip controller (:meth:`gripper.drives.drive.Drive.grip_controller`) reads the drive and sets the next
-chunk's goals, so a chunk is also its control period. Cable tension is the tendon-limit force
-sensor, recorded at every step by the rollout; per-finger contact force is the sum of the
+chunk's goals, so a chunk is also its control period. The drive's effort (``Drive.effort_sensors``)
+is recorded at every step by the rollout; per-finger contact force is the sum of the
 normal forces of all contacts between that finger's elements and the object, read from the
 contact list at the end of every chunk (so peaks are sampled every ``chunk_steps`` steps, 40 ms
 by default at the 2 ms step).

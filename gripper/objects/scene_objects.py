@@ -59,7 +59,7 @@ def add_object(spec: mujoco.MjSpec, obj: GraspObject, place: Placement = Placeme
                rigid_contact: bool = True) -> None:
     """Add ``obj`` to ``spec`` standing on the floor at ``place``; edits ``spec`` in place.
     ``rigid_contact``: a rigid part's contacts near-rigid (``RIGID_CONTACT_SOLREF``), as the
-    pads need; False keeps MuJoCo's default softness (0.16.0's ``contact.model = "solver"``)."""
+    pads need; False keeps MuJoCo's default softness (``contact.model = "solver"``)."""
     obj.validate()
     pos = [place.x, place.y, obj.size[2] + DROP_GAP]
     obj.object_kind.build(spec, obj, place, pos, _yaw_quat(place.yaw), rigid_contact=rigid_contact)

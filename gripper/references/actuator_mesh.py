@@ -91,8 +91,8 @@ class MeshSize(Validated):
         3      4          2          5 mm
         ====== ========== ========== ===========
 
-        One cell through each thin layer throughout (on 0.19.0's model, refining through them
-        moved the bend at 250 kPa by 0-3 %: ``docs/pneumatic.md``). The levels are not geometrically similar, so the
+        One cell through each thin layer throughout (refining through them moved the bend at
+        250 kPa by 0-3 %: ``docs/pneumatic.md``). The levels are not geometrically similar, so the
         convergence study measures each by its representative cell size (volume / cells)^(1/3),
         as Celik et al. (2008) do. One duct cell per half-arc is not in the asymptotic range (a
         45° quadratic cell in the inextensible winding: 30 % stiffer at 25 kPa than two or three,

@@ -37,8 +37,8 @@ class ObjectProbe:
 
     def __post_init__(self):
         m = self.model
-        # each finger's drive actuator (the servo, the chamber's regulator, ...)
-        self.servo = self.drive.actuator_ids(m)
+        # each finger's drive actuator (a cable's servo, a chamber's regulator, ...)
+        self.actuators = self.drive.actuator_ids(m)
         self.lift_x = m.actuator("lift_x").id
         self.lift_z = m.actuator("lift_z").id
         self.palm = m.body("palm").id
