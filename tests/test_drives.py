@@ -119,18 +119,8 @@ class KnuckleDrive(Drive):
     def reach_commands(self):
         return np.linspace(0.0, TRAVEL, 13)
 
-    def check_set_point(self, protocol):
-        if protocol.policy != "per_object":
-            raise ValueError("protocol.policy: the knuckle gripper closes by each object's command only")
-
-    def grip_controller(self, m, sensor, protocol):
-        return None
-
     def open_loop_rate(self, protocol):
         return 1.0  # rad/s
-
-    def fingertip_clearance(self, protocol):
-        return protocol.fingertip_clearance
 
 
 @pytest.fixture(scope="module")

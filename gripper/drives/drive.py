@@ -241,13 +241,18 @@ class Drive(ABC):
     def set_point(self, protocol) -> float:
         return float(getattr(protocol, self.set_point_field))
 
-    @abstractmethod
     def check_set_point(self, protocol) -> None:
-        """Refuse a protocol this drive cannot run (one line naming the field)."""
+        """Refuse a protocol this drive cannot run (one line naming the field). By default a
+        drive without a grip set-point (:attr:`set_point_field` empty) runs the per-object
+        policy only."""
+        if not self.set_point_field and protocol.policy != "per_object":
+            raise ValueError(f"protocol.policy: the {self.kind} gripper closes by each object's command only "
+                             "(policy = \"per_object\"): it has no grip controller")
 
-    @abstractmethod
     def grip_controller(self, m: mujoco.MjModel, sensor: DriveSensor, protocol) -> GripControl | None:
-        """The protocol's grip controller, or None when the protocol ramps a per-object command."""
+        """The protocol's grip controller, or None when the protocol ramps a per-object command
+        (the default: a drive without a controller)."""
+        return None
 
     @abstractmethod
     def open_loop_rate(self, protocol) -> float:
@@ -279,9 +284,10 @@ class Drive(ABC):
         if the drive has one."""
         return None
 
-    @abstractmethod
     def fingertip_clearance(self, protocol) -> float:
-        """The fingertip grasp's gap between the fingertips and the support [m]."""
+        """The fingertip grasp's gap between the fingertips and the support [m] (by default the
+        protocol's ``fingertip_clearance``)."""
+        return protocol.fingertip_clearance
 
     def trial_outcome(self, peak_effort: float) -> dict:
         """The drive's entry in a trial record (its ``drive`` key): its kind and the trial's

@@ -205,9 +205,6 @@ class CableDrive(Drive):
     def close_command(self, grip) -> float | None:
         return float(grip.goal.max())
 
-    def fingertip_clearance(self, protocol) -> float:
-        return protocol.fingertip_clearance
-
     def _indices(self, m: mujoco.MjModel) -> dict[str, np.ndarray]:
         if self._index is None or self._index[0] is not m:
             n = self.params.layout.n_fingers
