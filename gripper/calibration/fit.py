@@ -330,6 +330,161 @@ def _history(record: BendingRecord, timestep: float, static_only: bool
     return tension, full, idx
 
 
+@dataclass
+class _Targets:
+    """One block of the fit's residuals: what the hinge model is compared with at each sample.
+
+    Attributes:
+        angles: element angles B2..Bn from B1 [deg], 0 where not observed.
+        tip: tip x, z [m], 0 where not observed.
+        angles_ok: which of ``angles`` are observed (bench data may lack one).
+        tip_ok: which of ``tip`` are observed.
+        weight: weight of the block's residuals [-]: a number, or one per residual.
+    """
+
+    angles: np.ndarray
+    tip: np.ndarray
+    angles_ok: np.ndarray
+    tip_ok: np.ndarray
+    weight: float | np.ndarray = 1.0
+
+    @classmethod
+    def observed(cls, angles: np.ndarray, tip: np.ndarray, weight: float | np.ndarray = 1.0
+                 ) -> _Targets:
+        """Targets from observations that are NaN where missing."""
+        angles_ok, tip_ok = np.isfinite(angles), np.isfinite(tip)
+        return cls(np.nan_to_num(angles), np.nan_to_num(tip), angles_ok, tip_ok, weight)
+
+    def residuals(self, runs, cfg: FitConfig) -> np.ndarray:
+        """Scaled misfit of each run of :meth:`HingeSimulator.run`: one column per run."""
+        cols = []
+        for ang, tip, _ in runs:
+            ra = np.where(self.angles_ok, ang[:, 1:] - self.angles, 0.0) / cfg.angle_sigma_deg
+            rt = np.where(self.tip_ok, tip - self.tip, 0.0) / cfg.tip_sigma_m
+            cols.append(self.weight * np.hstack([ra, rt]).ravel())  # row-major: per sample
+        return np.array(cols).T
+
+
+@dataclass
+class _SettledBlock:
+    """The settled static block of a transient fit (see ``FitConfig.static_weight``): the
+    static model's tension staircase [N], the steps of its fitted static points and their
+    targets at rest."""
+
+    tension: np.ndarray
+    steps: np.ndarray
+    targets: _Targets
+
+
+def _settled_block(record: BendingRecord, cfg: FitConfig, held: set[int], timestep: float,
+                   n_hinges: int) -> _SettledBlock | None:
+    """The settled static block of a fit of ``record``; None where the fit has none (a static
+    fit, ``static_weight`` 0 or every static point held out)."""
+    static_fit = np.array([int(record.static[i]) for i in range(len(record.static))
+                           if i not in held], dtype=int)
+    if not (cfg.fit_damping and cfg.static_weight > 0 and len(static_fit) > 0):
+        return None
+    s_tension, s_step, _ = _history(record, timestep, True)
+    s_ang, s_tip, s_count = _settled_targets(record, static_fit)
+    # Each target is a mean of s_count samples: weight sqrt(count) gives it the weight of
+    # those samples (least squares with the noise of a mean).
+    s_weight = cfg.static_weight * np.sqrt(np.repeat(s_count, n_hinges + 2))
+    return _SettledBlock(s_tension, s_step[static_fit], _Targets.observed(s_ang, s_tip, s_weight))
+
+
+def _unpack(x: np.ndarray, n_hinges: int, cfg: FitConfig) -> tuple[np.ndarray, np.ndarray]:
+    """Stiffness [N·m/rad] and damping [N·m·s/rad] per hinge from the log parameters ``x``
+    (damping ``STATIC_SETTLE_TAU`` x stiffness when it is not fitted)."""
+    k = np.exp(x[:n_hinges])
+    c = np.exp(x[n_hinges:]) if cfg.fit_damping else STATIC_SETTLE_TAU * k
+    return k, c
+
+
+@dataclass
+class _Residual:
+    """The fit's residual as a function of the log parameters: one column per parameter point
+    (``x`` of shape (n_par, k)), or a vector for a single point."""
+
+    sim: HingeSimulator
+    cfg: FitConfig
+    n_par: int
+    tension: np.ndarray  # per step of the fit's model [N]
+    steps: np.ndarray  # step of each fitted sample
+    targets: _Targets
+    static_only: bool
+    settled: _SettledBlock | None
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        x2 = x.reshape(self.n_par, -1)
+        nh = self.sim.n_hinges
+        ks, cs = zip(*(_unpack(x2[:, j], nh, self.cfg) for j in range(x2.shape[1])), strict=True)
+        ks, cs = np.array(ks).T, np.array(cs).T
+        runs = self.sim.run(ks, cs, self.tension, self.steps, static=self.static_only)
+        res = self.targets.residuals(runs, self.cfg)
+        if self.settled is not None:
+            s = self.settled
+            runs = self.sim.run(ks, STATIC_SETTLE_TAU * ks, s.tension, s.steps, static=True)
+            res = np.vstack([res, s.targets.residuals(runs, self.cfg)])
+        return res if x.ndim == 2 else res[:, 0]
+
+
+def _fit_samples(record: BendingRecord, cfg: FitConfig, used: np.ndarray, n_par: int,
+                 static_only: bool) -> tuple[set[int], np.ndarray]:
+    """The held-out static points (checked) and the samples the fit uses: ``used`` less the
+    held-out hold windows.
+
+    Raises:
+        ValueError: bad held-out levels, or fewer residuals than ``n_par`` parameters.
+    """
+    held = check_held_out(cfg.held_out, len(record.static),
+                          min_fit_levels=min_fit_levels(record, n_par) if static_only else 1)
+    held_windows = _held_out_mask(record, held)
+    fit_samples = np.array([i for i in used if not held_windows[i]], dtype=int)
+    n_obs = (np.isfinite(record.element_angles_deg[fit_samples, 1:]).sum()
+             + np.isfinite(record.tip_xz_m[fit_samples]).sum())
+    n_res = int(n_obs)
+    if n_res < n_par:
+        raise ValueError(f"data: {len(fit_samples)} usable points give {n_res} residuals, "
+                         f"fewer than the {n_par} parameters to fit")
+    return held, fit_samples
+
+
+def _start_and_bounds(record: BendingRecord, p: GripperParams, cfg: FitConfig
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The solver's start point and box (log parameters: stiffness, then damping if fitted)."""
+    nh = p.finger.n_hinges
+    k0 = _initial_stiffness(record, p)
+    lo_k, hi_k = cfg.stiffness_bounds
+    k0 = np.clip(k0, lo_k * 1.01, hi_k * 0.99)
+    x0 = np.log(k0)
+    lower, upper = np.full(nh, math.log(lo_k)), np.full(nh, math.log(hi_k))
+    if cfg.fit_damping:
+        c0 = np.clip(0.02 * k0, cfg.damping_bounds[0] * 1.01, cfg.damping_bounds[1] * 0.99)
+        x0 = np.concatenate([x0, np.log(c0)])
+        lower = np.concatenate([lower, np.full(nh, math.log(cfg.damping_bounds[0]))])
+        upper = np.concatenate([upper, np.full(nh, math.log(cfg.damping_bounds[1]))])
+    return x0, lower, upper
+
+
+def _fitted_metrics(sim: HingeSimulator, k: np.ndarray, c: np.ndarray, record: BendingRecord,
+                    p: GripperParams, cfg: FitConfig, held: set[int], timestep: float
+                    ) -> tuple[BendingRecord, dict]:
+    """The hinge model's record at the fitted values and its metrics (see :class:`FitResult`)."""
+    static_only = not cfg.fit_damping
+    fitted = simulate_record(sim, k, c, record, timestep, static_only)
+    metrics = fit_metrics(record, fitted, p, held)
+    settled = (fitted if static_only else
+               simulate_record(sim, k, STATIC_SETTLE_TAU * k, record, timestep, True))
+    metrics["settled"] = settled_metrics(record, settled, p)
+    # diverged trial points (each also printed a MuJoCo warning): a count, so that a user with
+    # wider bounds sees why the console filled with warnings while the fit still converged
+    metrics["diverged_trial_points"] = sim.diverged
+    # fitted values at their bounds: one line each, stored with the calibration and printed by
+    # gripper calibrate ("warning: ...")
+    metrics["warnings"] = bound_warnings(k, c if cfg.fit_damping else None, cfg)
+    return fitted, metrics
+
+
 def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
                config: FitConfig | None = None, *, timestep: float = 5.0e-4) -> FitResult:
     """Fit per-hinge stiffness (and damping) to ``record`` (see the module docstring).
@@ -347,86 +502,18 @@ def fit_hinges(record: BendingRecord, params: GripperParams | None = None,
     sim = HingeSimulator(p, timestep)
     tension, step_of_sample, used = _history(record, timestep, static_only)
     n_par = nh * (2 if cfg.fit_damping else 1)
-    held = check_held_out(cfg.held_out, len(record.static),
-                          min_fit_levels=min_fit_levels(record, n_par) if static_only else 1)
-    held_windows = _held_out_mask(record, held)
-    fit_samples = np.array([i for i in used if not held_windows[i]], dtype=int)
-    n_obs = (np.isfinite(record.element_angles_deg[fit_samples, 1:]).sum()
-             + np.isfinite(record.tip_xz_m[fit_samples]).sum())
-    n_res = int(n_obs)
-    if n_res < n_par:
-        raise ValueError(f"data: {len(fit_samples)} usable points give {n_res} residuals, "
-                         f"fewer than the {n_par} parameters to fit")
-
+    held, fit_samples = _fit_samples(record, cfg, used, n_par, static_only)
     target_ang = (record.element_angles_deg - record.element_angles_deg[:, :1])[fit_samples, 1:]
-    target_tip = record.tip_xz_m[fit_samples]
-    ang_ok, tip_ok = np.isfinite(target_ang), np.isfinite(target_tip)  # bench data may lack one
-    target_ang, target_tip = np.nan_to_num(target_ang), np.nan_to_num(target_tip)
-
-    def unpack(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        k = np.exp(x[:nh])
-        c = np.exp(x[nh:]) if cfg.fit_damping else STATIC_SETTLE_TAU * k
-        return k, c
-
-    # The settled static block of a transient fit (see FitConfig.static_weight).
-    static_fit = np.array([int(record.static[i]) for i in range(len(record.static))
-                           if i not in held], dtype=int)
-    use_static = cfg.fit_damping and cfg.static_weight > 0 and len(static_fit) > 0
-    if use_static:
-        s_tension, s_step, _ = _history(record, timestep, True)
-        s_ang, s_tip, s_count = _settled_targets(record, static_fit)
-        s_ang_ok, s_tip_ok = np.isfinite(s_ang), np.isfinite(s_tip)
-        s_ang, s_tip = np.nan_to_num(s_ang), np.nan_to_num(s_tip)
-        # Each target is a mean of s_count samples: weight sqrt(count) gives it the weight of
-        # those samples (least squares with the noise of a mean).
-        s_weight = cfg.static_weight * np.sqrt(np.repeat(s_count, nh + 2))
-
-    def block(runs, t_ang, t_tip, a_ok, t_ok, weight):
-        cols = []
-        for ang, tip, _ in runs:
-            ra = np.where(a_ok, ang[:, 1:] - t_ang, 0.0) / cfg.angle_sigma_deg
-            rt = np.where(t_ok, tip - t_tip, 0.0) / cfg.tip_sigma_m
-            cols.append(weight * np.hstack([ra, rt]).ravel())  # row-major: per sample
-        return np.array(cols).T
-
-    def residual(x: np.ndarray) -> np.ndarray:
-        x2 = x.reshape(n_par, -1)
-        ks, cs = zip(*(unpack(x2[:, j]) for j in range(x2.shape[1])), strict=True)
-        ks, cs = np.array(ks).T, np.array(cs).T
-        runs = sim.run(ks, cs, tension, step_of_sample[fit_samples], static=static_only)
-        res = block(runs, target_ang, target_tip, ang_ok, tip_ok, 1.0)
-        if use_static:
-            settled = sim.run(ks, STATIC_SETTLE_TAU * ks, s_tension, s_step[static_fit],
-                              static=True)
-            res = np.vstack([res, block(settled, s_ang, s_tip, s_ang_ok, s_tip_ok, s_weight)])
-        return res if x.ndim == 2 else res[:, 0]
-
-    k0 = _initial_stiffness(record, p)
-    lo_k, hi_k = cfg.stiffness_bounds
-    k0 = np.clip(k0, lo_k * 1.01, hi_k * 0.99)
-    x0 = np.log(k0)
-    lower, upper = np.full(nh, math.log(lo_k)), np.full(nh, math.log(hi_k))
-    if cfg.fit_damping:
-        c0 = np.clip(0.02 * k0, cfg.damping_bounds[0] * 1.01, cfg.damping_bounds[1] * 0.99)
-        x0 = np.concatenate([x0, np.log(c0)])
-        lower = np.concatenate([lower, np.full(nh, math.log(cfg.damping_bounds[0]))])
-        upper = np.concatenate([upper, np.full(nh, math.log(cfg.damping_bounds[1]))])
+    targets = _Targets.observed(target_ang, record.tip_xz_m[fit_samples])
+    residual = _Residual(sim, cfg, n_par, tension, step_of_sample[fit_samples], targets,
+                         static_only, _settled_block(record, cfg, held, timestep, nh))
+    x0, lower, upper = _start_and_bounds(record, p, cfg)
     t0 = time.perf_counter()
     x, trace = minimize.least_squares(x0, residual, bounds=(lower, upper), max_iter=cfg.max_iter,
                                       verbose=0, output=io.StringIO())
     wall = time.perf_counter() - t0
-    k, c = unpack(x)
-    fitted = simulate_record(sim, k, c, record, timestep, static_only)
-    metrics = fit_metrics(record, fitted, p, held)
-    settled = (fitted if static_only else
-               simulate_record(sim, k, STATIC_SETTLE_TAU * k, record, timestep, True))
-    metrics["settled"] = settled_metrics(record, settled, p)
-    # diverged trial points (each also printed a MuJoCo warning): a count, so that a user with
-    # wider bounds sees why the console filled with warnings while the fit still converged
-    metrics["diverged_trial_points"] = sim.diverged
-    # fitted values at their bounds: one line each, stored with the calibration and printed by
-    # gripper calibrate ("warning: ...")
-    metrics["warnings"] = bound_warnings(k, c if cfg.fit_damping else None, cfg)
+    k, c = _unpack(x, nh, cfg)
+    fitted, metrics = _fitted_metrics(sim, k, c, record, p, cfg, held, timestep)
     return FitResult(stiffness=k, damping=c, rest_angle_deg=np.zeros(nh), fitted=fitted,
                      metrics=metrics, iterations=len(trace), wall_time_s=wall, config=cfg)
 
@@ -437,8 +524,8 @@ def _settled_targets(record: BendingRecord, static_idx: np.ndarray
     weight of each (as many samples as the last quarter of its hold).
 
     A record with its static points at rest (``record.has_rest``: the reference relaxed each
-    hold's end until its own residual was small) gives those. Otherwise (records before 0.15.0)
-    the mean over the last quarter of the hold stands in for rest, which it is not where the
+    hold's end until its own residual was small) gives those. Otherwise (older records) the
+    mean over the last quarter of the hold stands in for rest, which it is not where the
     finger still rings at the end of its hold."""
     rel = record.element_angles_deg - record.element_angles_deg[:, :1]
     bounds = np.concatenate([[-1], record.static])

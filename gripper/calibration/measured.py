@@ -74,6 +74,38 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
     path = Path(path)
     name = path.name
     rows = read_user_csv(path, "data file")
+    header = _checked_header(name, rows)
+    ang_cols = angle_columns(n_segments)
+    has_ang, has_tip = _observed_sets(name, header, ang_cols)
+    wanted = ["tension_N"] + (["r"] if "r" in header else [])
+    wanted += ang_cols if has_ang else []
+    wanted += ["tip_x_m", "tip_z_m"] if has_tip else []
+    values = _read_values(name, rows[1:], header, wanted)
+    n = len(rows) - 1
+    if n < min_points:
+        raise ValueError(f"data file {name}: {n} data rows, fewer than the {min_points} "
+                         f"parameters to fit")
+    tension = np.array(values["tension_N"])
+    _check_tensions(name, tension, max_tension_N)
+    angles = np.full((n, n_segments), np.nan)
+    angles[:, 0] = 0.0
+    if has_ang:
+        angles[:, 1:] = np.column_stack([values[c] for c in ang_cols])
+        _check_angles(name, angles, ang_cols, closure_angle_deg)
+        _check_bending_grows(name, angles[:, -1], tension, ang_cols[-1])
+    tip = np.full((n, 2), np.nan)
+    if has_tip:
+        tip[:] = np.column_stack([values["tip_x_m"], values["tip_z_m"]])
+    order = np.argsort(tension, kind="stable")
+    rate = np.array(values["r"]) if "r" in values else np.full(n, np.nan)
+    return BendingRecord(t=np.arange(n, dtype=float), tension_N=tension[order], r=rate[order],
+                         element_angles_deg=angles[order], tip_xz_m=tip[order],
+                         static=np.arange(n))
+
+
+def _checked_header(name: str, rows: list[list[str]]) -> list[str]:
+    """The header row of data file ``name``: present, its column names unique, with
+    ``tension_N``."""
     if not rows:
         raise ValueError(f"data file {name}: empty; need a header row with tension_N")
     header = [h.strip() for h in rows[0]]
@@ -86,7 +118,12 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
     if "tension_N" not in header:
         raise ValueError(f"data file {name}: missing column 'tension_N' (cable tension [N]); "
                          f"shortening alone cannot fix the stiffness")
-    ang_cols = angle_columns(n_segments)
+    return header
+
+
+def _observed_sets(name: str, header: list[str], ang_cols: list[str]) -> tuple[bool, bool]:
+    """Whether ``header`` has every element angle column and both tip columns; a partial set,
+    or neither set, is refused."""
     has_ang = [c in header for c in ang_cols]
     has_tip = [c in header for c in ("tip_x_m", "tip_z_m")]
     if any(has_ang) and not all(has_ang):
@@ -99,12 +136,16 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
     if not any(has_ang) and not any(has_tip):
         raise ValueError(f"data file {name}: missing columns: need {ang_cols[0]}..{ang_cols[-1]} "
                          f"or tip_x_m and tip_z_m")
-    wanted = ["tension_N"] + (["r"] if "r" in header else [])
-    wanted += ang_cols if all(has_ang) else []
-    wanted += ["tip_x_m", "tip_z_m"] if all(has_tip) else []
+    return all(has_ang), all(has_tip)
+
+
+def _read_values(name: str, data_rows: list[list[str]], header: list[str], wanted: list[str]
+                 ) -> dict[str, list[float]]:
+    """The ``wanted`` columns of the data rows as finite numbers (the first data row is the
+    file's row 2)."""
     col = {c: header.index(c) for c in wanted}
     values: dict[str, list[float]] = {c: [] for c in wanted}
-    for lineno, row in enumerate(rows[1:], start=2):
+    for lineno, row in enumerate(data_rows, start=2):
         if len(row) != len(header):
             raise ValueError(f"data file {name}: row {lineno} has {len(row)} cells, the header "
                              f"has {len(header)}")
@@ -119,11 +160,11 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
                 raise ValueError(f"data file {name}: row {lineno}, column {c}: {cell!r} is not "
                                  f"a finite number")
             values[c].append(v)
-    n = len(rows) - 1
-    if n < min_points:
-        raise ValueError(f"data file {name}: {n} data rows, fewer than the {min_points} "
-                         f"parameters to fit")
-    tension = np.array(values["tension_N"])
+    return values
+
+
+def _check_tensions(name: str, tension: np.ndarray, max_tension_N: float | None) -> None:
+    """Every tension in (0, ``max_tension_N``] [N]; None: the default design's servo's."""
     if max_tension_N is None:
         from gripper.core.params import GripperParams
 
@@ -137,54 +178,53 @@ def read_measured_csv(path: str | Path, n_segments: int, *, min_points: int = 1,
                "the servo's maximum cable tension, stall torque / spool radius")
         raise ValueError(f"data file {name}: row {i + 2}, column tension_N: {tension[i]:.4g} N; "
                          f"{t_range} ({why})")
-    angles = np.full((n, n_segments), np.nan)
-    angles[:, 0] = 0.0
-    if all(has_ang):
-        angles[:, 1:] = np.column_stack([values[c] for c in ang_cols])
-        if closure_angle_deg is not None:
-            top = (n_segments - 1) * (closure_angle_deg + CLOSED_CUT_MARGIN_DEG)
-            what = (f"every cut closed, {n_segments - 1} x ({closure_angle_deg:.1f} + "
-                    f"{CLOSED_CUT_MARGIN_DEG:g})°")
-        else:
-            top, what = MAX_BENDING_DEG, "a full turn"
-        bad_a = np.argwhere((angles[:, 1:] < 0) | (angles[:, 1:] > top))
-        if len(bad_a):
-            r, j = (int(v) for v in bad_a[0])
+
+
+def _check_angles(name: str, angles: np.ndarray, ang_cols: list[str],
+                  closure_angle_deg: float | None) -> None:
+    """Every element angle [deg] in [0, full closure] (``MAX_BENDING_DEG`` without the design's
+    closure angle) and, with it, no hinge past its cut's closure."""
+    n_segments = angles.shape[1]
+    if closure_angle_deg is not None:
+        top = (n_segments - 1) * (closure_angle_deg + CLOSED_CUT_MARGIN_DEG)
+        what = (f"every cut closed, {n_segments - 1} x ({closure_angle_deg:.1f} + "
+                f"{CLOSED_CUT_MARGIN_DEG:g})°")
+    else:
+        top, what = MAX_BENDING_DEG, "a full turn"
+    bad_a = np.argwhere((angles[:, 1:] < 0) | (angles[:, 1:] > top))
+    if len(bad_a):
+        r, j = (int(v) for v in bad_a[0])
+        raise ValueError(
+            f"data file {name}: row {r + 2}, column {ang_cols[j]}: {angles[r, j + 1]:.4g}°; "
+            f"allowed 0 to {top:.1f}° (the cable curls the finger towards its grasping face, "
+            f"at most {what})")
+    if closure_angle_deg is not None:
+        hinge = np.diff(angles, axis=1)
+        closed = hinge > closure_angle_deg + CLOSED_CUT_MARGIN_DEG
+        if closed.any():
+            r, j = (int(v) for v in np.argwhere(closed)[0])
             raise ValueError(
-                f"data file {name}: row {r + 2}, column {ang_cols[j]}: {angles[r, j + 1]:.4g}°; "
-                f"allowed 0 to {top:.1f}° (the cable curls the finger towards its grasping face, "
-                f"at most {what})")
-        if closure_angle_deg is not None:
-            hinge = np.diff(angles, axis=1)
-            closed = hinge > closure_angle_deg + CLOSED_CUT_MARGIN_DEG
-            if closed.any():
-                r, j = (int(v) for v in np.argwhere(closed)[0])
-                raise ValueError(
-                    f"data file {name}: row {r + 2}: hinge B{j + 1}-B{j + 2} at {hinge[r, j]:.1f}°, "
-                    f"past the cut's closure angle {closure_angle_deg:.1f}°; the fit needs open "
-                    f"cuts, drop rows with closed cuts")
-        # Overall growth: the sign of the covariance of bending (last element) and tension,
-        # i.e. of their least-squares slope; noise may make single steps fall.
-        bend = angles[:, -1]
-        if n >= 2 and np.ptp(tension) > 0:
-            dt = tension - tension.mean()
-            cov = float(np.mean(dt * (bend - bend.mean())))
-            if not cov > 0:
-                with np.errstate(all="ignore"):
-                    slope = cov / float(np.mean(dt * dt))
-                raise ValueError(
-                    f"data file {name}: column {ang_cols[-1]}: the bending does not grow with "
-                    f"tension (least-squares slope {slope:.3g} deg/N over {n} rows); a pull on "
-                    f"the cable bends the finger further, so the slope must be > 0: check the "
-                    f"rows' tensions and angles")
-    tip = np.full((n, 2), np.nan)
-    if all(has_tip):
-        tip[:] = np.column_stack([values["tip_x_m"], values["tip_z_m"]])
-    order = np.argsort(tension, kind="stable")
-    rate = np.array(values["r"]) if "r" in values else np.full(n, np.nan)
-    return BendingRecord(t=np.arange(n, dtype=float), tension_N=tension[order], r=rate[order],
-                         element_angles_deg=angles[order], tip_xz_m=tip[order],
-                         static=np.arange(n))
+                f"data file {name}: row {r + 2}: hinge B{j + 1}-B{j + 2} at {hinge[r, j]:.1f}°, "
+                f"past the cut's closure angle {closure_angle_deg:.1f}°; the fit needs open "
+                f"cuts, drop rows with closed cuts")
+
+
+def _check_bending_grows(name: str, bend: np.ndarray, tension: np.ndarray, column: str) -> None:
+    """The bending (angle of the last element, ``column``) [deg] grows with tension [N]."""
+    # Overall growth: the sign of the covariance of bending (last element) and tension,
+    # i.e. of their least-squares slope; noise may make single steps fall.
+    n = len(bend)
+    if n >= 2 and np.ptp(tension) > 0:
+        dt = tension - tension.mean()
+        cov = float(np.mean(dt * (bend - bend.mean())))
+        if not cov > 0:
+            with np.errstate(all="ignore"):
+                slope = cov / float(np.mean(dt * dt))
+            raise ValueError(
+                f"data file {name}: column {column}: the bending does not grow with "
+                f"tension (least-squares slope {slope:.3g} deg/N over {n} rows); a pull on "
+                f"the cable bends the finger further, so the slope must be > 0: check the "
+                f"rows' tensions and angles")
 
 
 def write_measured_csv(path: str | Path, record: BendingRecord, *, comment: str = "") -> Path:

@@ -48,6 +48,7 @@ DEFAULT_FILES = ("calibration.json", "report.png", "errors.csv", "reference.json
                  "convergence.json")
 
 if TYPE_CHECKING:
+    from gripper.references.convergence import MeshConvergence
     from gripper.references.fmbs import FmbsConfig
 
 
@@ -155,18 +156,7 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
         fmbs = fmbs.validate()
     # Every input is checked here, before the slow runs and before any file is written.
     if data is not None:
-        fit_cfg = (fit or FitConfig(fit_damping=False)).validate()
-        if fit_cfg.fit_damping:
-            raise ValueError("fit.fit_damping: bench data are static points; damping needs the "
-                             "reference's transient")
-        record = read_measured_csv(data, p.finger.n_segments, min_points=p.finger.n_hinges,
-                                   closure_angle_deg=p.finger.closure_angle_deg,
-                                   max_tension_N=p.servo.max_cable_tension)
-        check_held_out(fit_cfg.held_out, len(record.static),
-                       min_fit_levels=min_fit_levels(record, p.finger.n_hinges))
-        source = "measured"
-        settings: dict[str, Any] = {"data": str(data)}
-        say(f"read {len(record.static)} static points from {data}")
+        fit_cfg, record, settings = _read_bench_data(data, p, fit, say)
     else:
         # the levels are known before the run: ReferenceConfig.n_levels (each level of a
         # reference record has every angle and the tip, enough residuals for a static fit)
@@ -178,70 +168,11 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
         with tempfile.TemporaryDirectory(dir=out.parent, prefix=f".{out.name}.") as tmp_name:
             tmp = Path(tmp_name)
             if data is None:
-                settings = {"kind": kind, "reference": ref_cfg.to_dict(), "fit": asdict(fit_cfg),
-                            "rest_tol_deg": REST_TOL_DEG}
-                if kind == "fmbs":
-                    from gripper.references.fmbs import FmbsConfig
-
-                    fmbs = fmbs or FmbsConfig()
-                    settings["fmbs"] = fmbs.to_dict()
-                else:
-                    fmbs = None
-                run_cfg = ref_cfg
-                if converge:
-                    from gripper.references.convergence import format_convergence, mesh_convergence
-
-                    say(f"mesh convergence of the {kind} model (linear solves on 4 meshes) ...")
-                    conv = mesh_convergence(p, ref_cfg.mesh, clamp_length=ref_cfg.clamp_length,
-                                            fmbs=fmbs if kind == "fmbs" else None, on_progress=say)
-                    (tmp / "convergence.json").write_text(json.dumps(conv.to_dict(), indent=2) + "\n")
-                    say(format_convergence(conv))
-                    run_cfg = replace(ref_cfg, modulus_factor=conv.stiffness_correction)
-                    if auto and kind == "continuum":
-                        run_cfg = replace(run_cfg, tension_max=auto_tension_max(p, conv))
-                    settings["convergence"] = {
-                        "stiffness_correction": conv.stiffness_correction,
-                        "default_error": conv.default_error,
-                        "order": conv.richardson.order, "gci_fine": conv.richardson.gci_fine,
-                        "extrapolated_compliance_deg_per_N": conv.richardson.extrapolated}
-                elif auto and kind == "continuum":
-                    # the mesh as it is: its own compliance sets the tension (quick_tension_max)
-                    run_cfg = replace(run_cfg, tension_max=quick_tension_max(p, run_cfg))
-                if kind == "fmbs":
-                    from gripper.references.fmbs import fmbs_tension_max, run_fmbs
-
-                    assert fmbs is not None  # defaulted above
-                    if auto:
-                        run_cfg = replace(run_cfg, tension_max=fmbs_tension_max(p, fmbs))
-                    say(f"flexible multibody run ({fmbs.reading} reading, "
-                        f"{run_cfg.tension_max:.3g} N) ...")
-                    record = run_fmbs(p, run_cfg, fmbs, at_rest=True)
-                else:
-                    say(f"continuum reference run (flex finger, {run_cfg.tension_max:.3g} N, "
-                        f"then each level relaxed to rest; several minutes) ...")
-                    record = run_reference(p, run_cfg, at_rest=True)
-                source = kind
-                settings["run"] = {"modulus_factor": run_cfg.modulus_factor,
-                                   "tension_max": run_cfg.tension_max}
-                (tmp / "reference.json").write_text(json.dumps(record.to_json_dict()) + "\n")
-                say(f"reference: {record.wall_time_s:.1f} s wall")
-            say("fitting the hinge model ...")
-            result = fit_hinges(record, p, fit_cfg)
-            metrics = dict(result.metrics, fit_wall_time_s=result.wall_time_s,
-                           fit_iterations=result.iterations)
-            for line in metrics.get("warnings", []):  # also in calibration.json's metrics
-                say(f"warning: {line}")
-            if data is None:
-                metrics["reference_wall_time_s"] = record.wall_time_s
-            settings["settings_hash"] = settings_hash({k: v for k, v in settings.items()
-                                                       if k in ("kind", "reference", "fit", "fmbs", "rest_tol_deg")})
-            cal = Calibration(design_hash=design_hash(p), source=source,
-                              stiffness=tuple(float(v) for v in result.stiffness),
-                              damping=tuple(float(v) for v in result.damping),
-                              rest_angle_deg=tuple(float(v) for v in result.rest_angle_deg),
-                              metrics=metrics, settings=settings)
-            cal.save(tmp / "calibration.json")
-            write_report(tmp, record, result, title=source)
+                record, settings = _reference_record(tmp, p, kind, ref_cfg, fit_cfg, fmbs,
+                                                     converge=converge, auto=auto, say=say)
+            source = "measured" if data is not None else kind
+            cal, result = _fit_and_save(tmp, p, record, fit_cfg, source, settings,
+                                        reference_run=data is None, say=say)
             out.mkdir(exist_ok=True)
             for f in tmp.iterdir():
                 f.replace(out / f.name)
@@ -251,6 +182,122 @@ def calibrate(out_dir: str | Path, params: GripperParams | None = None, *,
             if d.is_dir() and not any(d.iterdir()):
                 d.rmdir()
         raise
+
+
+def _read_bench_data(data: str | Path, p: GripperParams, fit: FitConfig | None,
+                     say: Callable[[str], None]
+                     ) -> tuple[FitConfig, BendingRecord, dict[str, Any]]:
+    """The fit settings (static: bench data have no transient), the bench record of ``data``
+    checked against the design and the held-out levels, and the calibration's settings.
+
+    Raises:
+        ValueError: damping asked of bench data, a bad data file or bad held-out levels.
+    """
+    fit_cfg = (fit or FitConfig(fit_damping=False)).validate()
+    if fit_cfg.fit_damping:
+        raise ValueError("fit.fit_damping: bench data are static points; damping needs the "
+                         "reference's transient")
+    record = read_measured_csv(data, p.finger.n_segments, min_points=p.finger.n_hinges,
+                               closure_angle_deg=p.finger.closure_angle_deg,
+                               max_tension_N=p.servo.max_cable_tension)
+    check_held_out(fit_cfg.held_out, len(record.static),
+                   min_fit_levels=min_fit_levels(record, p.finger.n_hinges))
+    settings: dict[str, Any] = {"data": str(data)}
+    say(f"read {len(record.static)} static points from {data}")
+    return fit_cfg, record, settings
+
+
+def _reference_record(tmp: Path, p: GripperParams, kind: str, ref_cfg: ReferenceConfig,
+                      fit_cfg: FitConfig, fmbs: FmbsConfig | None, *, converge: bool, auto: bool,
+                      say: Callable[[str], None]) -> tuple[BendingRecord, dict[str, Any]]:
+    """Run the reference of ``kind`` (writing ``reference.json`` and, with ``converge``,
+    ``convergence.json`` into ``tmp``): its record and the calibration's settings."""
+    settings: dict[str, Any] = {"kind": kind, "reference": ref_cfg.to_dict(),
+                                "fit": asdict(fit_cfg), "rest_tol_deg": REST_TOL_DEG}
+    if kind == "fmbs":
+        from gripper.references.fmbs import FmbsConfig
+
+        fmbs = fmbs or FmbsConfig()
+        settings["fmbs"] = fmbs.to_dict()
+    else:
+        fmbs = None
+    run_cfg = ref_cfg
+    if converge:
+        conv = _mesh_convergence(tmp, p, kind, ref_cfg, fmbs, say)
+        run_cfg = replace(ref_cfg, modulus_factor=conv.stiffness_correction)
+        if auto and kind == "continuum":
+            run_cfg = replace(run_cfg, tension_max=auto_tension_max(p, conv))
+        settings["convergence"] = {
+            "stiffness_correction": conv.stiffness_correction,
+            "default_error": conv.default_error,
+            "order": conv.richardson.order, "gci_fine": conv.richardson.gci_fine,
+            "extrapolated_compliance_deg_per_N": conv.richardson.extrapolated}
+    elif auto and kind == "continuum":
+        # the mesh as it is: its own compliance sets the tension (quick_tension_max)
+        run_cfg = replace(run_cfg, tension_max=quick_tension_max(p, run_cfg))
+    record, run_cfg = _run_reference_kind(p, kind, run_cfg, fmbs, auto=auto, say=say)
+    settings["run"] = {"modulus_factor": run_cfg.modulus_factor,
+                       "tension_max": run_cfg.tension_max}
+    (tmp / "reference.json").write_text(json.dumps(record.to_json_dict()) + "\n")
+    say(f"reference: {record.wall_time_s:.1f} s wall")
+    return record, settings
+
+
+def _mesh_convergence(tmp: Path, p: GripperParams, kind: str, ref_cfg: ReferenceConfig,
+                      fmbs: FmbsConfig | None, say: Callable[[str], None]) -> MeshConvergence:
+    """The mesh convergence study of the ``kind`` reference, written to
+    ``tmp/convergence.json`` (:func:`gripper.references.convergence.mesh_convergence`)."""
+    from gripper.references.convergence import format_convergence, mesh_convergence
+
+    say(f"mesh convergence of the {kind} model (linear solves on 4 meshes) ...")
+    conv = mesh_convergence(p, ref_cfg.mesh, clamp_length=ref_cfg.clamp_length,
+                            fmbs=fmbs if kind == "fmbs" else None, on_progress=say)
+    (tmp / "convergence.json").write_text(json.dumps(conv.to_dict(), indent=2) + "\n")
+    say(format_convergence(conv))
+    return conv
+
+
+def _run_reference_kind(p: GripperParams, kind: str, run_cfg: ReferenceConfig,
+                        fmbs: FmbsConfig | None, *, auto: bool, say: Callable[[str], None]
+                        ) -> tuple[BendingRecord, ReferenceConfig]:
+    """The reference run of ``kind`` to rest at each level, and the settings it ran with (the
+    flexible multibody run's tension from its springs when ``auto``)."""
+    if kind == "fmbs":
+        from gripper.references.fmbs import fmbs_tension_max, run_fmbs
+
+        assert fmbs is not None  # defaulted by _reference_record
+        if auto:
+            run_cfg = replace(run_cfg, tension_max=fmbs_tension_max(p, fmbs))
+        say(f"flexible multibody run ({fmbs.reading} reading, "
+            f"{run_cfg.tension_max:.3g} N) ...")
+        return run_fmbs(p, run_cfg, fmbs, at_rest=True), run_cfg
+    say(f"continuum reference run (flex finger, {run_cfg.tension_max:.3g} N, "
+        f"then each level relaxed to rest; several minutes) ...")
+    return run_reference(p, run_cfg, at_rest=True), run_cfg
+
+
+def _fit_and_save(tmp: Path, p: GripperParams, record: BendingRecord, fit_cfg: FitConfig,
+                  source: str, settings: dict[str, Any], *, reference_run: bool,
+                  say: Callable[[str], None]) -> tuple[Calibration, FitResult]:
+    """Fit the hinge model to ``record``; ``calibration.json`` and the report into ``tmp``."""
+    say("fitting the hinge model ...")
+    result = fit_hinges(record, p, fit_cfg)
+    metrics = dict(result.metrics, fit_wall_time_s=result.wall_time_s,
+                   fit_iterations=result.iterations)
+    for line in metrics.get("warnings", []):  # also in calibration.json's metrics
+        say(f"warning: {line}")
+    if reference_run:
+        metrics["reference_wall_time_s"] = record.wall_time_s
+    settings["settings_hash"] = settings_hash({k: v for k, v in settings.items()
+                                               if k in ("kind", "reference", "fit", "fmbs", "rest_tol_deg")})
+    cal = Calibration(design_hash=design_hash(p), source=source,
+                      stiffness=tuple(float(v) for v in result.stiffness),
+                      damping=tuple(float(v) for v in result.damping),
+                      rest_angle_deg=tuple(float(v) for v in result.rest_angle_deg),
+                      metrics=metrics, settings=settings)
+    cal.save(tmp / "calibration.json")
+    write_report(tmp, record, result, title=source)
+    return cal, result
 
 
 def stale_reasons(cal: Calibration, params: GripperParams | None = None) -> list[str]:

@@ -35,7 +35,7 @@ import time
 
 import numpy as np
 
-from gripper.core.params import GripperParams
+from gripper.core.params import FingerGeometry, GripperParams
 from gripper.references.convergence import CHECK_TENSION, MEASURE_SCALE, solve_clamped
 from gripper.references.finger_mesh import channel_side
 
@@ -44,93 +44,139 @@ KNOT_BAND = 1.0e-3  # m: width of the traction band around the channel opening o
 
 def _gmsh_mesh(p: GripperParams, size: float, bridge_size: float
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The half body (y >= 0) meshed by gmsh into 4-node tetrahedra: node coordinates [m], each
+    tetrahedron's node indices and each knot-patch triangle's node indices.
+
+    ``size``: largest edge [m]; ``bridge_size``: edge on the cuts' apex lines [m].
+    """
     import gmsh
 
     g = p.finger
     a = channel_side(g)
-    L, W, H = g.length, g.width, g.height
-    tan_half = math.tan(0.5 * math.radians(g.cut_angle_deg))
     gmsh.initialize(interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.add("finger")
-        occ = gmsh.model.occ
-        body = occ.addBox(0.0, 0.0, 0.0, L, 0.5 * W, H)
-        tools = []
-        for e in range(1, g.n_segments):
-            x0 = e * g.pitch
-            # A triangular prism through the half width, apex on the bridge top.
-
-            top = H + 1e-3  # reach past the grasping face
-            dt = (top - g.bridge_thickness) * tan_half
-            pts = [occ.addPoint(x0, -1e-3, g.bridge_thickness),
-                   occ.addPoint(x0 + dt, -1e-3, top), occ.addPoint(x0 - dt, -1e-3, top)]
-            lines = [occ.addLine(pts[i], pts[(i + 1) % 3]) for i in range(3)]
-            face = occ.addPlaneSurface([occ.addCurveLoop(lines)])
-            ext = occ.extrude([(2, face)], 0.0, 0.5 * W + 2e-3, 0.0)
-            tools += [t for t in ext if t[0] == 3]
-        tools.append((3, occ.addBox(-1e-3, -1e-3, g.hole_height - 0.5 * a, L + 2e-3,
-                                    0.5 * a + 1e-3, a)))
-        (solid,), _ = occ.cut([(3, body)], tools)
-        # The knot's patch: a square ring of width KNOT_BAND around the channel opening on the
-        # tip face, made a surface of its own so the traction's line of action is exact.
-        half = 0.5 * a + KNOT_BAND
-        ring = occ.addRectangle(g.hole_height - half, 0.0, 0.0, 2.0 * half, half)
-        occ.rotate([(2, ring)], 0, 0, 0, 0, 1, 0, -0.5 * math.pi)  # into the plane x = 0
-        occ.translate([(2, ring)], L, 0, 0)
-        occ.fragment([solid], [(2, ring)])
-        occ.synchronize()
-        # The rectangle's piece over the channel opening bounds nothing: drop it.
-        for dim, tag in gmsh.model.getEntities(2):
-            x0, _, _, x1, y1, _ = gmsh.model.getBoundingBox(dim, tag)
-            if abs(x0 - L) < 1e-6 and abs(x1 - L) < 1e-6 and y1 < 0.5 * a + 1e-6:
-                occ.remove([(dim, tag)], recursive=True)
-        occ.synchronize()
-        # Cells graded towards each cut's apex line (the singular re-entrant corner on the
-        # bridge top): ``bridge_size`` on the line, growing linearly to ``size`` at three bridge
-        # thicknesses from it.
-        apex = []
-        for dim, tag in gmsh.model.getEntities(1):
-            x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(dim, tag)
-            on_cut = any(abs(x0 - e * g.pitch) < 1e-6 and abs(x1 - e * g.pitch) < 1e-6
-                         for e in range(1, g.n_segments))
-            if on_cut and abs(z0 - g.bridge_thickness) < 1e-6 and abs(z1 - g.bridge_thickness) < 1e-6:
-                apex.append(tag)
-        if len(apex) != g.n_hinges:
-            raise RuntimeError(f"quadratic check: found {len(apex)} apex lines, expected {g.n_hinges}")
-        dist = gmsh.model.mesh.field.add("Distance")
-        gmsh.model.mesh.field.setNumbers(dist, "CurvesList", apex)
-        gmsh.model.mesh.field.setNumber(dist, "Sampling", 200)
-        thr = gmsh.model.mesh.field.add("Threshold")
-        gmsh.model.mesh.field.setNumber(thr, "InField", dist)
-        gmsh.model.mesh.field.setNumber(thr, "SizeMin", bridge_size)
-        gmsh.model.mesh.field.setNumber(thr, "SizeMax", size)
-        gmsh.model.mesh.field.setNumber(thr, "DistMin", 0.0)
-        gmsh.model.mesh.field.setNumber(thr, "DistMax", 3.0 * g.bridge_thickness)
-        gmsh.model.mesh.field.setAsBackgroundMesh(thr)
-        for opt in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
-                    "Mesh.MeshSizeFromCurvature"):
-            gmsh.option.setNumber(opt, 0)
-        gmsh.option.setNumber("Mesh.MeshSizeMax", size)
-        gmsh.option.setNumber("Mesh.Algorithm3D", 1)
+        solid = _half_body(g, a)
+        _add_knot_patch(g, a, solid)
+        _grade_towards_apexes(g, _apex_lines(g), size, bridge_size)
         gmsh.model.mesh.generate(3)
         tags, coords, _ = gmsh.model.mesh.getNodes()
         etypes, _, enodes = gmsh.model.mesh.getElements(3)
         tet = np.asarray(enodes[list(etypes).index(4)], dtype=np.int64).reshape(-1, 4)
-        patch = []
-        for dim, tag in gmsh.model.getEntities(2):
-            x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(dim, tag)
-            if (abs(x0 - L) < 1e-6 and abs(x1 - L) < 1e-6 and z0 > g.hole_height - half - 1e-6
-                    and z1 < g.hole_height + half + 1e-6 and y1 < half + 1e-6):
-                _, _, tri = gmsh.model.mesh.getElements(2, tag)
-                patch.append(np.asarray(tri[0], dtype=np.int64).reshape(-1, 3))
-        if len(patch) != 1:
-            raise RuntimeError(f"quadratic check: expected one knot patch, found {len(patch)}")
+        patch = _knot_patch_triangles(g, a)
     finally:
         gmsh.finalize()
     index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
     index[tags.astype(np.int64)] = np.arange(len(tags))
-    return coords.reshape(-1, 3), index[tet], index[patch[0]]
+    return coords.reshape(-1, 3), index[tet], index[patch]
+
+
+def _half_body(g: FingerGeometry, a: float) -> tuple[int, int]:
+    """The half body as an OCC solid: a box less the triangular cuts and the square channel of
+    side ``a`` [m]."""
+    import gmsh
+
+    occ = gmsh.model.occ
+    L, W, H = g.length, g.width, g.height
+    tan_half = math.tan(0.5 * math.radians(g.cut_angle_deg))
+    body = occ.addBox(0.0, 0.0, 0.0, L, 0.5 * W, H)
+    tools = []
+    for e in range(1, g.n_segments):
+        x0 = e * g.pitch
+        # A triangular prism through the half width, apex on the bridge top.
+
+        top = H + 1e-3  # reach past the grasping face
+        dt = (top - g.bridge_thickness) * tan_half
+        pts = [occ.addPoint(x0, -1e-3, g.bridge_thickness),
+               occ.addPoint(x0 + dt, -1e-3, top), occ.addPoint(x0 - dt, -1e-3, top)]
+        lines = [occ.addLine(pts[i], pts[(i + 1) % 3]) for i in range(3)]
+        face = occ.addPlaneSurface([occ.addCurveLoop(lines)])
+        ext = occ.extrude([(2, face)], 0.0, 0.5 * W + 2e-3, 0.0)
+        tools += [t for t in ext if t[0] == 3]
+    tools.append((3, occ.addBox(-1e-3, -1e-3, g.hole_height - 0.5 * a, L + 2e-3,
+                                0.5 * a + 1e-3, a)))
+    (solid,), _ = occ.cut([(3, body)], tools)
+    return solid
+
+
+def _add_knot_patch(g: FingerGeometry, a: float, solid: tuple[int, int]) -> None:
+    """The knot's patch: a square ring of width KNOT_BAND around the channel opening on the
+    tip face, made a surface of its own so the traction's line of action is exact."""
+    import gmsh
+
+    occ = gmsh.model.occ
+    L = g.length
+    half = 0.5 * a + KNOT_BAND
+    ring = occ.addRectangle(g.hole_height - half, 0.0, 0.0, 2.0 * half, half)
+    occ.rotate([(2, ring)], 0, 0, 0, 0, 1, 0, -0.5 * math.pi)  # into the plane x = 0
+    occ.translate([(2, ring)], L, 0, 0)
+    occ.fragment([solid], [(2, ring)])
+    occ.synchronize()
+    # The rectangle's piece over the channel opening bounds nothing: drop it.
+    for dim, tag in gmsh.model.getEntities(2):
+        x0, _, _, x1, y1, _ = gmsh.model.getBoundingBox(dim, tag)
+        if abs(x0 - L) < 1e-6 and abs(x1 - L) < 1e-6 and y1 < 0.5 * a + 1e-6:
+            occ.remove([(dim, tag)], recursive=True)
+    occ.synchronize()
+
+
+def _apex_lines(g: FingerGeometry) -> list[int]:
+    """Tags of the cuts' apex lines (the singular re-entrant corners on the bridge tops)."""
+    import gmsh
+
+    apex = []
+    for dim, tag in gmsh.model.getEntities(1):
+        x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(dim, tag)
+        on_cut = any(abs(x0 - e * g.pitch) < 1e-6 and abs(x1 - e * g.pitch) < 1e-6
+                     for e in range(1, g.n_segments))
+        if on_cut and abs(z0 - g.bridge_thickness) < 1e-6 and abs(z1 - g.bridge_thickness) < 1e-6:
+            apex.append(tag)
+    if len(apex) != g.n_hinges:
+        raise RuntimeError(f"quadratic check: found {len(apex)} apex lines, expected {g.n_hinges}")
+    return apex
+
+
+def _grade_towards_apexes(g: FingerGeometry, apex: list[int], size: float,
+                          bridge_size: float) -> None:
+    """Cells graded towards each cut's apex line: ``bridge_size`` [m] on the line, growing
+    linearly to ``size`` [m] at three bridge thicknesses from it."""
+    import gmsh
+
+    field = gmsh.model.mesh.field
+    dist = field.add("Distance")
+    field.setNumbers(dist, "CurvesList", apex)
+    field.setNumber(dist, "Sampling", 200)
+    thr = field.add("Threshold")
+    field.setNumber(thr, "InField", dist)
+    field.setNumber(thr, "SizeMin", bridge_size)
+    field.setNumber(thr, "SizeMax", size)
+    field.setNumber(thr, "DistMin", 0.0)
+    field.setNumber(thr, "DistMax", 3.0 * g.bridge_thickness)
+    field.setAsBackgroundMesh(thr)
+    for opt in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints",
+                "Mesh.MeshSizeFromCurvature"):
+        gmsh.option.setNumber(opt, 0)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", size)
+    gmsh.option.setNumber("Mesh.Algorithm3D", 1)
+
+
+def _knot_patch_triangles(g: FingerGeometry, a: float) -> np.ndarray:
+    """Node tags of the meshed knot patch's triangles, shape (n, 3)."""
+    import gmsh
+
+    L = g.length
+    half = 0.5 * a + KNOT_BAND
+    patch = []
+    for dim, tag in gmsh.model.getEntities(2):
+        x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(dim, tag)
+        if (abs(x0 - L) < 1e-6 and abs(x1 - L) < 1e-6 and z0 > g.hole_height - half - 1e-6
+                and z1 < g.hole_height + half + 1e-6 and y1 < half + 1e-6):
+            _, _, tri = gmsh.model.mesh.getElements(2, tag)
+            patch.append(np.asarray(tri[0], dtype=np.int64).reshape(-1, 3))
+    if len(patch) != 1:
+        raise RuntimeError(f"quadratic check: expected one knot patch, found {len(patch)}")
+    return patch[0]
 
 
 def _best_fit_angle(x0: np.ndarray, x1: np.ndarray, w: np.ndarray) -> float:

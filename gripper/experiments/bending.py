@@ -16,6 +16,7 @@ Example:
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 
 import mujoco
@@ -147,50 +148,90 @@ def run_bending_test(config: BendingConfig | None = None,
                          f"{ctrl_max / theta_per_r:.3f} with this spool, got {cfg.r_max!r}")
     mujoco.mj_forward(model, data)
 
-    rows: list[tuple] = []
+    run = _BendingRun(model, data, probe, servo, theta_per_r, on_sample)
     t0 = time.perf_counter()
     if cfg.mode == "dynamic":
+        run.ramp(cfg)
+    else:
+        run.quasi_static(cfg)
+    wall = time.perf_counter() - t0
+    check_stable(model, data, "bending test")
+    return _bending_result(run.rows, data, wall, cfg)
+
+
+@dataclass
+class _BendingRun:
+    """The bending scene being run: the servo's set-point is ``r`` x ``theta_per_r`` [rad], and
+    each sample is a row of ``rows`` (time [s], commanded r, then :meth:`_Probe.read`)."""
+
+    model: mujoco.MjModel
+    data: mujoco.MjData
+    probe: _Probe
+    servo: int
+    theta_per_r: float  # spool angle per unit r [rad]
+    on_sample: Callable[[mujoco.MjModel, mujoco.MjData], object] | None
+    rows: list[tuple] = field(default_factory=list)
+
+    def sample(self, r_cmd: float) -> None:
+        """Record a row at the current state (then ``on_sample``)."""
+        mujoco.mj_forward(self.model, self.data)
+        self.rows.append((self.data.time, r_cmd, *self.probe.read(self.data)))
+        if self.on_sample is not None:
+            self.on_sample(self.model, self.data)
+
+    def ramp(self, cfg: BendingConfig) -> None:
+        """Dynamic mode: r ramped from 0 to ``r_max`` over ``duration`` [s], ``n_points``
+        samples evenly spaced in time."""
+        model, data = self.model, self.data
         n_steps = int(round(cfg.duration / cfg.timestep))
         record_at = set(np.linspace(0, n_steps, cfg.n_points).round().astype(int).tolist())
         for step in range(n_steps + 1):
             r_cmd = cfg.r_max * min(1.0, data.time / cfg.duration)
             if step in record_at:
-                mujoco.mj_forward(model, data)
-                rows.append((data.time, r_cmd, *probe.read(data)))
-                if on_sample is not None:
-                    on_sample(model, data)
-            data.ctrl[servo] = r_cmd * theta_per_r
+                self.sample(r_cmd)
+            data.ctrl[self.servo] = r_cmd * self.theta_per_r
             mujoco.mj_step(model, data)
             if step % 200 == 0:
                 check_stable(model, data, "bending test")
-    else:
-        r_points = np.linspace(0.0, cfg.r_max, cfg.n_points)
-        dofs = probe.hinge_dof
-        for r_cmd in r_points:
-            data.ctrl[servo] = r_cmd * theta_per_r
-            t_start = data.time
-            qadr = model.jnt_qposadr[model.dof_jntid[dofs]]
-            while True:
-                lo = hi = data.qpos[qadr].copy()
-                for _ in range(50):
-                    mujoco.mj_step(model, data)
-                    lo, hi = np.minimum(lo, data.qpos[qadr]), np.maximum(hi, data.qpos[qadr])
-                check_stable(model, data, "bending test (quasi-static)")
-                reel_v = data.qvel[probe.reel_dof] / probe.cable_length0
-                at_rest = (max(np.abs(data.qvel[dofs]).max(), abs(reel_v)) < cfg.settle_tol
-                           or np.degrees(hi - lo).max() < cfg.settle_band_deg)
-                if at_rest and data.time - t_start > 0.05:
-                    break
-                if data.time - t_start > cfg.settle_time_max:
-                    raise SimulationUnstable(
-                        f"bending test: no rest within {cfg.settle_time_max} s at r = {r_cmd:.3f}")
-            mujoco.mj_forward(model, data)
-            rows.append((data.time, r_cmd, *probe.read(data)))
-            if on_sample is not None:
-                on_sample(model, data)
-    wall = time.perf_counter() - t0
-    check_stable(model, data, "bending test")
 
+    def quasi_static(self, cfg: BendingConfig) -> None:
+        """Quasi-static mode: each of ``n_points`` set-points from 0 to ``r_max`` held until the
+        finger is at rest, then sampled."""
+        for r_cmd in np.linspace(0.0, cfg.r_max, cfg.n_points):
+            self.data.ctrl[self.servo] = r_cmd * self.theta_per_r
+            self._settle(cfg, r_cmd)
+            self.sample(r_cmd)
+
+    def _settle(self, cfg: BendingConfig, r_cmd: float) -> None:
+        """Step in blocks of 50 until the hinges and reel are still (``settle_tol``) or swing
+        within ``settle_band_deg``, after at least 0.05 s.
+
+        Raises:
+            SimulationUnstable: no rest within ``settle_time_max`` [s], or an unstable state.
+        """
+        model, data, probe = self.model, self.data, self.probe
+        dofs = probe.hinge_dof
+        t_start = data.time
+        qadr = model.jnt_qposadr[model.dof_jntid[dofs]]
+        while True:
+            lo = hi = data.qpos[qadr].copy()
+            for _ in range(50):
+                mujoco.mj_step(model, data)
+                lo, hi = np.minimum(lo, data.qpos[qadr]), np.maximum(hi, data.qpos[qadr])
+            check_stable(model, data, "bending test (quasi-static)")
+            reel_v = data.qvel[probe.reel_dof] / probe.cable_length0
+            at_rest = (max(np.abs(data.qvel[dofs]).max(), abs(reel_v)) < cfg.settle_tol
+                       or np.degrees(hi - lo).max() < cfg.settle_band_deg)
+            if at_rest and data.time - t_start > 0.05:
+                break
+            if data.time - t_start > cfg.settle_time_max:
+                raise SimulationUnstable(
+                    f"bending test: no rest within {cfg.settle_time_max} s at r = {r_cmd:.3f}")
+
+
+def _bending_result(rows: list[tuple], data: mujoco.MjData, wall: float, cfg: BendingConfig
+                    ) -> BendingResult:
+    """The recorded rows as arrays (see :class:`BendingResult`)."""
     cols = list(zip(*rows, strict=True))
     q = np.array(cols[2])
     return BendingResult(

@@ -72,30 +72,12 @@ def beam_end_moment_check(params: GripperParams | None = None,
     M = theta * EI / L_free
     f = -M * ref.load_share * w * s / np.sum(w * s ** 2)
     t0 = time.perf_counter()
-    n = int(round(settle_time / cfg.timestep))
-    ramp = 0.5 * settle_time
-    for _ in range(n):
-        cur = d.xpos[tip_bodies]
-        ang = math.atan2(-np.polyfit(s, cur[:, 0], 1)[0], np.polyfit(s, cur[:, 2], 1)[0])
-        scale = min(1.0, d.time / ramp)
-        d.xfrc_applied[tip_bodies, 0] = scale * f * math.cos(ang)
-        d.xfrc_applied[tip_bodies, 2] = scale * f * math.sin(ang)
-        mujoco.mj_step(m, d)
+    _settle_under_follower_couple(ref, tip_bodies, s, f, settle_time, cfg.timestep)
     check_stable(m, d, "beam check")
     pos = ref.node_positions()
-    cur = pos[tip]
-    ang = math.atan2(-np.polyfit(s, cur[:, 0], 1)[0], np.polyfit(s, cur[:, 2], 1)[0])
-    # Neutral axis: the node level nearest mid-height, averaged across the width per station.
-    z_mid = 0.5 * g.height
-    levels = np.unique(np.round(pts[:, 2], 12))
-    z_axis = levels[np.argmin(np.abs(levels - z_mid))]
-    on_axis = np.flatnonzero(np.isclose(pts[:, 2], z_axis))
-    xs = np.unique(np.round(pts[on_axis, 0], 12))
-    line = np.array([ref.centroid(on_axis[np.isclose(pts[on_axis, 0], x)], pos) for x in xs])
-    phi = np.unwrap(np.arctan2(np.diff(line[:, 2]), np.diff(line[:, 0])))
-    s_mid = 0.5 * (xs[1:] + xs[:-1])
-    inner = (s_mid >= cfg.clamp_length + g.height) & (s_mid <= g.length - g.height)
-    kappa = np.polyfit(s_mid[inner], phi[inner], 1)[0]
+    ang = _face_rotation(s, pos[tip])
+    z_axis, xs, line = _neutral_axis(ref, pos, 0.5 * g.height)
+    kappa = _curvature(xs, line, cfg.clamp_length + g.height, g.length - g.height)
     # Closed-form tip of the neutral axis: a circular arc of radius EI/M from the clamp.
     rad = EI / M
     exact = np.array([cfg.clamp_length + rad * math.sin(theta),
@@ -107,6 +89,50 @@ def beam_end_moment_check(params: GripperParams | None = None,
         "nodes": int(len(pts)), "wall_time_s": time.perf_counter() - t0,
         "max_speed": float(np.abs(d.qvel).max()),
     }
+
+
+def _face_rotation(s: np.ndarray, cur: np.ndarray) -> float:
+    """Rotation about -y of the loaded face [rad]: of the best-fit line through its nodes at
+    positions ``cur`` [m], ``s`` [m] being their heights on the straight face."""
+    return math.atan2(-np.polyfit(s, cur[:, 0], 1)[0], np.polyfit(s, cur[:, 2], 1)[0])
+
+
+def _settle_under_follower_couple(ref: ReferenceFinger, tip_bodies: np.ndarray, s: np.ndarray,
+                                  f: np.ndarray, settle_time: float, timestep: float) -> None:
+    """Step ``ref`` for ``settle_time`` [s] under the end couple: nodal forces ``f`` [N] on the
+    tip face's bodies (at heights ``s`` [m]), turned with the face at every step and ramped in
+    over the first half."""
+    m, d = ref.model, ref.data
+    n = int(round(settle_time / timestep))
+    ramp = 0.5 * settle_time
+    for _ in range(n):
+        ang = _face_rotation(s, d.xpos[tip_bodies])
+        scale = min(1.0, d.time / ramp)
+        d.xfrc_applied[tip_bodies, 0] = scale * f * math.cos(ang)
+        d.xfrc_applied[tip_bodies, 2] = scale * f * math.sin(ang)
+        mujoco.mj_step(m, d)
+
+
+def _neutral_axis(ref: ReferenceFinger, pos: np.ndarray, z_mid: float
+                  ) -> tuple[float, np.ndarray, np.ndarray]:
+    """The neutral axis: the node level nearest mid-height ``z_mid`` [m], averaged across the
+    width per station. Its height [m], the stations' x [m] and the axis points at ``pos`` [m]."""
+    pts = ref.mesh.points
+    levels = np.unique(np.round(pts[:, 2], 12))
+    z_axis = levels[np.argmin(np.abs(levels - z_mid))]
+    on_axis = np.flatnonzero(np.isclose(pts[:, 2], z_axis))
+    xs = np.unique(np.round(pts[on_axis, 0], 12))
+    line = np.array([ref.centroid(on_axis[np.isclose(pts[on_axis, 0], x)], pos) for x in xs])
+    return z_axis, xs, line
+
+
+def _curvature(xs: np.ndarray, line: np.ndarray, lo: float, hi: float) -> float:
+    """Curvature [1/m] of the axis ``line`` (points at stations ``xs`` [m]): the slope of its
+    segments' angle along x, fitted over the stations in [``lo``, ``hi``]."""
+    phi = np.unwrap(np.arctan2(np.diff(line[:, 2]), np.diff(line[:, 0])))
+    s_mid = 0.5 * (xs[1:] + xs[:-1])
+    inner = (s_mid >= lo) & (s_mid <= hi)
+    return np.polyfit(s_mid[inner], phi[inner], 1)[0]
 
 
 def static_bend(params: GripperParams | None = None, mesh: MeshResolution | None = None, *,

@@ -218,12 +218,39 @@ def finger_mesh(g: FingerGeometry, res: MeshResolution | None = None) -> FingerM
     """
     g.validate()
     res = (res or MeshResolution()).validate()
-    s = res.scale
     a = channel_side(g)
     zc0, zc1 = g.hole_height - 0.5 * a, g.hole_height + 0.5 * a
     if zc0 <= g.bridge_thickness or zc1 >= g.height:
         raise ValueError("finger.hole_height: the cable channel must clear the bridge and the "
                          "grasping face")
+    builder = _MeshBuilder(g, res, _z_levels(g, res, zc0, zc1), _y_levels(g, res, a))
+    nodes_of_element: list[set[int]] = []
+    channel_nodes: list[set[int]] = []
+    for e in range(g.n_segments):
+        elem_nodes, chan = builder.add_element(e)
+        nodes_of_element.append(elem_nodes)
+        channel_nodes.append(chan)
+    pts, tet_arr, remap = _used_and_oriented(np.asarray(builder.points),
+                                             np.asarray(builder.tets, dtype=int))
+
+    def mapped(nodes: set[int]) -> np.ndarray:
+        return np.array(sorted(int(remap[n]) for n in nodes if remap[n] >= 0), dtype=int)
+
+    chan_idx = tuple(mapped(c) for c in channel_nodes)
+    if res.uniform:
+        # The beam check has no channel: the cable forces go to the nodes nearest the hole axis.
+        chan_idx = tuple(_nearest_line_nodes(pts, mapped(n), g.hole_height)
+                         for n in nodes_of_element)
+    return FingerMesh(points=pts, tets=tet_arr,
+                      nodes_of_element=tuple(mapped(n) for n in nodes_of_element),
+                      channel_nodes=chan_idx, anchor_nodes=_anchor_nodes(g, res, pts, chan_idx[-1]),
+                      symmetric=res.symmetric)
+
+
+def _z_levels(g: FingerGeometry, res: MeshResolution, zc0: float, zc1: float) -> np.ndarray:
+    """Node levels through the height [m]: bridge, wall below the channel (both graded towards
+    the bridge top by ``res.bridge_grading``), channel and wall above it."""
+    s = res.scale
     z_lv = _levels([0.0, g.bridge_thickness, zc0, zc1, g.height],
                    [res.bridge * s, res.below_hole * s, res.channel * s, res.above_hole * s])
     if res.bridge_grading != 1.0 and not res.uniform:
@@ -232,90 +259,125 @@ def finger_mesh(g: FingerGeometry, res: MeshResolution | None = None) -> FingerM
         below = tb - _graded(nb, tb, res.bridge_grading)[::-1]  # finest at the bridge top
         above = tb + _graded(nh, zc0 - tb, res.bridge_grading)  # finest at the bridge top
         z_lv = np.concatenate([below, above[1:], z_lv[nb + nh + 1:]])
+    return z_lv
+
+
+def _y_levels(g: FingerGeometry, res: MeshResolution, a: float) -> np.ndarray:
+    """Node levels across the width [m] (the half y >= 0 of a symmetric mesh): side walls and
+    the channel of side ``a``."""
+    s = res.scale
     if res.symmetric:
-        y_lv = _levels([0.0, 0.5 * a, 0.5 * g.width], [res.channel * s, res.side * s])
-    else:
-        y_lv = _levels([-0.5 * g.width, -0.5 * a, 0.5 * a, 0.5 * g.width],
-                       [res.side * s, res.channel * s, res.side * s])
-    nx = res.along * s
-    u = 0.5 * (1.0 - np.cos(np.pi * np.arange(nx + 1) / nx))  # cosine grading in [0, 1]
-    tan_half = math.tan(0.5 * math.radians(g.cut_angle_deg))
-    iz_bridge = res.bridge * s  # level index of the bridge top
+        return _levels([0.0, 0.5 * a, 0.5 * g.width], [res.channel * s, res.side * s])
+    return _levels([-0.5 * g.width, -0.5 * a, 0.5 * a, 0.5 * g.width],
+                   [res.side * s, res.channel * s, res.side * s])
 
-    def in_channel(jy: int, kz: int) -> bool:  # cell (jy, kz) inside the channel?
-        yc = 0.5 * (y_lv[jy] + y_lv[jy + 1])
-        zc = 0.5 * (z_lv[kz] + z_lv[kz + 1])
-        return abs(yc) < 0.5 * a and zc0 < zc < zc1
 
-    key_to_id: dict[tuple, int] = {}
-    points: list[tuple[float, float, float]] = []
-    tets: list[list[int]] = []
-    nodes_of_element: list[set[int]] = []
-    channel_nodes: list[set[int]] = []
-    for e in range(g.n_segments):
+class _MeshBuilder:
+    """Nodes and tetrahedra of the mapped mesh as its elements are added, each node made once
+    under its key (bridge nodes shared between neighbouring elements, centre nodes by their
+    corners)."""
+
+    def __init__(self, g: FingerGeometry, res: MeshResolution, z_lv: np.ndarray,
+                 y_lv: np.ndarray):
+        self.g, self.res, self.z_lv, self.y_lv = g, res, z_lv, y_lv
+        self.a = channel_side(g)
+        self.zc0, self.zc1 = g.hole_height - 0.5 * self.a, g.hole_height + 0.5 * self.a
+        self.nx = res.along * res.scale
+        self.u = 0.5 * (1.0 - np.cos(np.pi * np.arange(self.nx + 1) / self.nx))  # cosine grading in [0, 1]
+        self.tan_half = math.tan(0.5 * math.radians(g.cut_angle_deg))
+        self.iz_bridge = res.bridge * res.scale  # level index of the bridge top
+        self.key_to_id: dict[tuple, int] = {}
+        self.points: list[tuple[float, float, float]] = []
+        self.tets: list[list[int]] = []
+
+    def in_channel(self, jy: int, kz: int) -> bool:
+        """Whether cell (jy, kz) of the cross-section is inside the channel."""
+        yc = 0.5 * (self.y_lv[jy] + self.y_lv[jy + 1])
+        zc = 0.5 * (self.z_lv[kz] + self.z_lv[kz + 1])
+        return abs(yc) < 0.5 * self.a and self.zc0 < zc < self.zc1
+
+    def add_element(self, e: int) -> tuple[set[int], set[int]]:
+        """Mesh element ``e``: its nodes and those of them on the channel's wall."""
+        ids = self._element_grid(e)
+        elem_nodes: set[int] = set()
+        chan: set[int] = set()
+        for i in range(self.nx):
+            for j in range(len(self.y_lv) - 1):
+                for k in range(len(self.z_lv) - 1):
+                    cell = ids[i:i + 2, j:j + 2, k:k + 2]
+                    if not self.res.uniform and self.in_channel(j, k):
+                        chan.update(cell.ravel().tolist())
+                        continue
+                    self._split_cell(cell, elem_nodes)
+                    elem_nodes.update(cell.ravel().tolist())
+        return elem_nodes, chan & elem_nodes
+
+    def _element_grid(self, e: int) -> np.ndarray:
+        """Node ids of element ``e``'s structured grid, shape (nx + 1, ny, nz): columns leaning
+        with the cut faces, so that the cut faces are exact planes."""
+        g, res = self.g, self.res
         kind = element_kind(e, g.n_segments)
         cut_prox = kind in ("middle", "tip") and not res.uniform
         cut_dist = kind in ("middle", "base") and not res.uniform
         x0 = e * g.pitch
-        ids = np.empty((nx + 1, len(y_lv), len(z_lv)), dtype=int)
-        for k, z in enumerate(z_lv):
-            d = max(0.0, z - g.bridge_thickness) * tan_half
+        ids = np.empty((self.nx + 1, len(self.y_lv), len(self.z_lv)), dtype=int)
+        for k, z in enumerate(self.z_lv):
+            d = max(0.0, z - g.bridge_thickness) * self.tan_half
             lo = x0 + (d if cut_prox else 0.0)
             hi = x0 + g.pitch - (d if cut_dist else 0.0)
-            for i in range(nx + 1):
-                x = lo + (hi - lo) * u[i]
-                for j, y in enumerate(y_lv):
+            for i in range(self.nx + 1):
+                x = lo + (hi - lo) * self.u[i]
+                for j, y in enumerate(self.y_lv):
                     # Nodes are shared between elements only on the bridge (k <= iz_bridge) at
                     # the common boundary; elsewhere the cut separates them.
-                    shared = ((i == 0 and e > 0) and (k <= iz_bridge or res.uniform)
+                    shared = ((i == 0 and e > 0) and (k <= self.iz_bridge or res.uniform)
                               and not res.split_bridges)
-                    key = (e - 1, nx, j, k) if shared else (e, i, j, k)
-                    if key not in key_to_id:
-                        key_to_id[key] = len(points)
-                        points.append((x, y, z))
-                    ids[i, j, k] = key_to_id[key]
-        elem_nodes: set[int] = set()
-        chan: set[int] = set()
+                    key = (e - 1, self.nx, j, k) if shared else (e, i, j, k)
+                    if key not in self.key_to_id:
+                        self.key_to_id[key] = len(self.points)
+                        self.points.append((x, y, z))
+                    ids[i, j, k] = self.key_to_id[key]
+        return ids
 
-        def _centre_node(corners: tuple[int, ...], owner: set[int] = elem_nodes) -> int:
-            """The node at the centre of ``corners`` (a face or a cell), made once."""
-            key = ("centre", corners)
-            if key not in key_to_id:
-                key_to_id[key] = len(points)
-                points.append(tuple(np.mean([points[c] for c in corners], axis=0)))
-            owner.add(key_to_id[key])
-            return key_to_id[key]
+    def _centre_node(self, corners: tuple[int, ...], owner: set[int]) -> int:
+        """The node at the centre of ``corners`` (a face or a cell), made once; added to
+        ``owner``."""
+        key = ("centre", corners)
+        if key not in self.key_to_id:
+            self.key_to_id[key] = len(self.points)
+            self.points.append(tuple(np.mean([self.points[c] for c in corners], axis=0)))
+        owner.add(self.key_to_id[key])
+        return self.key_to_id[key]
 
-        for i in range(nx):
-            for j in range(len(y_lv) - 1):
-                for k in range(len(z_lv) - 1):
-                    if not res.uniform and in_channel(j, k):
-                        chan.update(ids[i:i + 2, j:j + 2, k:k + 2].ravel().tolist())
-                        continue
-                    if res.split == "kuhn6":
-                        for tet in _KUHN:
-                            tets.append([int(ids[i + di, j + dj, k + dk])
-                                         for di, dj, dk in tet])
-                    else:
-                        corner = ids[i:i + 2, j:j + 2, k:k + 2]
-                        centre = _centre_node(tuple(sorted(corner.ravel().tolist())))
-                        for face in _FACES:
-                            f = [int(corner[c]) for c in face]
-                            if res.split == "centre24":
-                                fc = _centre_node(tuple(sorted(f)))
-                                for q in range(4):
-                                    tets.append([f[q], f[(q + 1) % 4], fc, centre])
-                            else:  # the diagonal from the face's lowest node id: conforming
-                                q = int(np.argmin(f))
-                                a, b, c, d = (f[(q + r) % 4] for r in range(4))
-                                tets.append([a, b, c, centre])
-                                tets.append([a, c, d, centre])
-                    elem_nodes.update(ids[i:i + 2, j:j + 2, k:k + 2].ravel().tolist())
-        nodes_of_element.append(elem_nodes)
-        channel_nodes.append(chan & elem_nodes)
+    def _split_cell(self, corner: np.ndarray, owner: set[int]) -> None:
+        """Tetrahedra of the hexahedral cell whose node ids are ``corner`` (2 x 2 x 2), split
+        as ``res.split`` says; added nodes go to ``owner``."""
+        if self.res.split == "kuhn6":
+            for tet in _KUHN:
+                self.tets.append([int(corner[di, dj, dk]) for di, dj, dk in tet])
+            return
+        centre = self._centre_node(tuple(sorted(corner.ravel().tolist())), owner)
+        for face in _FACES:
+            f = [int(corner[c]) for c in face]
+            if self.res.split == "centre24":
+                fc = self._centre_node(tuple(sorted(f)), owner)
+                for q in range(4):
+                    self.tets.append([f[q], f[(q + 1) % 4], fc, centre])
+            else:  # the diagonal from the face's lowest node id: conforming
+                q = int(np.argmin(f))
+                a, b, c, d = (f[(q + r) % 4] for r in range(4))
+                self.tets.append([a, b, c, centre])
+                self.tets.append([a, c, d, centre])
 
-    pts = np.asarray(points)
-    tet_arr = np.asarray(tets, dtype=int)
+
+def _used_and_oriented(pts: np.ndarray, tet_arr: np.ndarray
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Points and tetrahedra without the nodes no tetrahedron uses, every tetrahedron positively
+    oriented, and the map from old node index to new (-1: dropped).
+
+    Raises:
+        ValueError: degenerate tetrahedra.
+    """
     # Drop nodes no tetrahedron uses (the channel's inside has none: its wall nodes are used).
     used = np.unique(tet_arr)
     remap = -np.ones(len(pts), dtype=int)
@@ -328,24 +390,19 @@ def finger_mesh(g: FingerGeometry, res: MeshResolution | None = None) -> FingerM
     if np.any(np.abs(vol) < 1e-15):
         raise ValueError("mesh: degenerate tetrahedra; the resolution is too fine for this "
                          "geometry")
+    return pts, tet_arr, remap
 
-    def mapped(nodes: set[int]) -> np.ndarray:
-        return np.array(sorted(int(remap[n]) for n in nodes if remap[n] >= 0), dtype=int)
 
-    chan_idx = tuple(mapped(c) for c in channel_nodes)
-    if res.uniform:
-        # The beam check has no channel: the cable forces go to the nodes nearest the hole axis.
-        chan_idx = tuple(_nearest_line_nodes(pts, mapped(n), g.hole_height)
-                         for n in nodes_of_element)
+def _anchor_nodes(g: FingerGeometry, res: MeshResolution, pts: np.ndarray,
+                  tip_channel: np.ndarray) -> np.ndarray:
+    """Nodes where the cable is knotted: the channel's rim on the tip's distal face (for the
+    channel-less beam check, the face's nodes nearest the hole axis)."""
     tip_face = np.isclose(pts[:, 0], g.length)
-    anchor = np.flatnonzero(tip_face & np.isin(np.arange(len(pts)), chan_idx[-1]))
     if res.uniform:
-        anchor = np.flatnonzero(tip_face & (np.abs(pts[:, 2] - g.hole_height)
-                                            <= np.abs(pts[tip_face, 2] - g.hole_height).min()
-                                            + 1e-12))
-    return FingerMesh(points=pts, tets=tet_arr,
-                      nodes_of_element=tuple(mapped(n) for n in nodes_of_element),
-                      channel_nodes=chan_idx, anchor_nodes=anchor, symmetric=res.symmetric)
+        return np.flatnonzero(tip_face & (np.abs(pts[:, 2] - g.hole_height)
+                                          <= np.abs(pts[tip_face, 2] - g.hole_height).min()
+                                          + 1e-12))
+    return np.flatnonzero(tip_face & np.isin(np.arange(len(pts)), tip_channel))
 
 
 def _nearest_line_nodes(pts: np.ndarray, nodes: np.ndarray, z: float) -> np.ndarray:

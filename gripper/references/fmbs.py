@@ -138,6 +138,97 @@ def rigid_zones(p: GripperParams, mesh, exclude: np.ndarray | None = None
     return out
 
 
+# Rotational inertia added to every body [kg·m²] (node bodies have no other): keeps MuJoCo's
+# inertia positive.
+INERTIA_FLOOR = 1e-12
+
+
+@dataclass
+class _NodeBodies:
+    """The body each mesh node belongs to (:meth:`FmbsFinger._node_bodies`).
+
+    Attributes:
+        owner: body name per node: ``"world"`` (clamped), ``"L<j>"``/``"R<j>"`` (the rigid
+            zones before and after bridge j), ``"knot"`` or ``"body_<i>"`` (a node of its own).
+        origins: each body's origin [m] in the finger frame.
+        hinge_bodies: per bridge, (j, hinge origin [m], nodes before, nodes after).
+        knot: the knot zone's nodes; knot_origin: its origin [m].
+        node_bodies: the nodes with a body of their own.
+    """
+
+    owner: np.ndarray
+    origins: dict[str, np.ndarray]
+    hinge_bodies: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]]
+    knot: np.ndarray
+    knot_origin: np.ndarray
+    node_bodies: list[int]
+
+
+def _inertial_xml(lumped: np.ndarray, pts: np.ndarray, nodes: np.ndarray, origin: np.ndarray
+                  ) -> str:
+    """The ``<inertial>`` of a rigid zone of ``nodes`` (lumped masses [kg]) about ``origin`` [m]:
+    its mass and, on every axis, its inertia about y (the bending axis) [kg·m²]."""
+    m = float(lumped[nodes].sum())
+    r = pts[nodes] - origin
+    iyy = float((lumped[nodes] * (r[:, 0] ** 2 + r[:, 2] ** 2)).sum()) + INERTIA_FLOOR
+    return (f'<inertial pos="0 0 0" mass="{m:.9g}" '
+            f'diaginertia="{iyy:.9g} {iyy:.9g} {iyy:.9g}"/>')
+
+
+def _bodies_xml(p: GripperParams, pts: np.ndarray, zones: _NodeBodies, lumped: np.ndarray,
+                k: float, c: float) -> list[str]:
+    """The worldbody's bodies: each free node's (three slides), each bridge's pair of rigid
+    zones (planar dofs, then the hinge of stiffness ``k`` [N·m/rad] and damping ``c``
+    [N·m·s/rad]) and the knot's zone (planar dofs)."""
+    g = p.finger
+    floor = INERTIA_FLOOR
+    bodies = []
+    for i in zones.node_bodies:
+        x, y, z = pts[i]
+        bodies.append(
+            f'<body name="body_{i}" pos="{x:.9g} {y:.9g} {z:.9g}">'
+            f'<inertial pos="0 0 0" mass="{lumped[i]:.9g}" diaginertia="{floor} {floor} {floor}"/>'
+            '<joint type="slide" axis="1 0 0"/><joint type="slide" axis="0 1 0"/>'
+            '<joint type="slide" axis="0 0 1"/></body>')
+    for j, origin, before, after in zones.hinge_bodies:
+        bodies.append(
+            f'<body name="L{j}" pos="{origin[0]:.9g} 0 {origin[2]:.9g}">'
+            f'{_inertial_xml(lumped, pts, before, origin)}'
+            '<joint type="slide" axis="1 0 0"/><joint type="slide" axis="0 0 1"/>'
+            '<joint type="hinge" axis="0 -1 0"/>'
+            f'<body name="R{j}">{_inertial_xml(lumped, pts, after, origin)}'
+            f'<joint name="hinge{j}" type="hinge" axis="0 -1 0" stiffness="{k:.9g}" '
+            f'damping="{c:.9g}"/></body></body>')
+    bodies.append(
+        f'<body name="knot" pos="{g.length:.9g} 0 {g.hole_height:.9g}">'
+        f'{_inertial_xml(lumped, pts, zones.knot, zones.knot_origin)}'
+        '<joint type="slide" axis="1 0 0"/><joint type="slide" axis="0 0 1"/>'
+        '<joint type="hinge" axis="0 -1 0"/></body>')
+    return bodies
+
+
+def _model_xml(p: GripperParams, cfg: ReferenceConfig, mesh, bodies: list[str],
+               owner: np.ndarray, verts: np.ndarray) -> str:
+    """The MJCF of the flexible multibody finger: ``bodies`` and the flex over them (each
+    vertex at ``verts`` [m] in its ``owner`` body's frame)."""
+    return f"""<mujoco model="finger_fmbs">
+  <option timestep="{cfg.timestep}" integrator="discrete" solver="Newton"
+          iterations="{cfg.solver_iterations}" tolerance="{cfg.solver_tolerance:g}" gravity="0 0 0"/>
+  <worldbody>
+    {"".join(bodies)}
+  </worldbody>
+  <deformable>
+    <flex name="body" dim="3" radius="0.0002" rgba="0.93 0.93 0.88 1"
+          body="{" ".join(owner)}" vertex="{" ".join(f"{v:.9g}" for v in verts.ravel())}"
+          element="{" ".join(str(i) for i in mesh.tets.ravel())}">
+      <contact contype="0" conaffinity="0" selfcollide="none"/>
+      <elasticity young="{p.material.youngs_modulus * cfg.modulus_factor:.9g}"
+                  poisson="{p.material.poisson_ratio}" damping="{cfg.mesh_mode_damping:.9g}"/>
+    </flex>
+  </deformable>
+</mujoco>"""
+
+
 class FmbsFinger(ReferenceFinger):
     """The compiled flexible multibody finger (see the module docstring)."""
 
@@ -162,10 +253,47 @@ class FmbsFinger(ReferenceFinger):
         return 2.0 * self.cfg.damping_ratio * k / omega
 
     def _build(self) -> None:
-        p, cfg, mesh = self.p, self.cfg, self.mesh
-        g, pts = p.finger, mesh.points
-        share = 0.5 if mesh.symmetric else 1.0  # the half mesh carries half of each hinge
+        p, cfg, pts = self.p, self.cfg, self.mesh.points
+        share = 0.5 if self.mesh.symmetric else 1.0  # the half mesh carries half of each hinge
         lumped = self.lumped_masses()
+        zones = self._node_bodies()
+        k = self.fmbs.hinge_stiffness * share
+        self.hinge_damping = (self.modal_hinge_damping(lumped) if self.fmbs.hinge_damping == "modal"
+                              else self.fmbs.hinge_damping_value)
+        c = self.hinge_damping * share
+        bodies = _bodies_xml(p, pts, zones, lumped, k, c)
+        verts = np.array([pts[i] - zones.origins[zones.owner[i]] for i in range(len(pts))])
+        self.model = mujoco.MjModel.from_xml_string(_model_xml(p, cfg, self.mesh, bodies,
+                                                               zones.owner, verts))
+        self.data = mujoco.MjData(self.model)
+        self.free = np.zeros(len(pts), dtype=bool)
+        self.free[zones.node_bodies] = True
+        self.body_of_node = np.full(len(pts), -1)
+        for i in zones.node_bodies:
+            self.body_of_node[i] = self.model.body(f"body_{i}").id
+        self._set_modal_damping(cfg.mass_damping)
+        self._hold_symmetry_plane()
+        mujoco.mj_forward(self.model, self.data)
+
+        # Rigid-zone body of every zone node (-1 elsewhere): the cable's equivalent forces on
+        # such nodes act on their body.
+        owner = zones.owner
+        self.zone_body_of_node = np.full(len(pts), -1)
+        for name in set(owner[i] for i in range(len(pts))):
+            if name.startswith(("L", "R")) or name == "knot":
+                idx = [i for i in range(len(pts)) if owner[i] == name]
+                self.zone_body_of_node[idx] = self.model.body(name).id
+        self.zone_bodies = np.unique(self.zone_body_of_node[self.zone_body_of_node >= 0])
+
+    def _node_bodies(self) -> _NodeBodies:
+        """The body of every mesh node: the world (clamp), a rigid zone either side of each
+        bridge, the knot's zone, or a body of its own.
+
+        Raises:
+            ValueError: the clamp reaches the first bridge.
+        """
+        p, mesh, pts = self.p, self.mesh, self.mesh.points
+        g = p.finger
         owner = np.full(len(pts), "", dtype=object)
         owner[self.pinned] = "world"
         origins: dict[str, np.ndarray] = {"world": np.zeros(3)}
@@ -188,68 +316,12 @@ class FmbsFinger(ReferenceFinger):
         for i in node_bodies:
             owner[i] = f"body_{i}"
             origins[owner[i]] = pts[i]
-        floor = 1e-12
+        return _NodeBodies(owner, origins, hinge_bodies, knot, knot_origin, node_bodies)
 
-        def inertial(nodes: np.ndarray, origin: np.ndarray) -> str:
-            m = float(lumped[nodes].sum())
-            r = pts[nodes] - origin
-            iyy = float((lumped[nodes] * (r[:, 0] ** 2 + r[:, 2] ** 2)).sum()) + floor
-            return (f'<inertial pos="0 0 0" mass="{m:.9g}" '
-                    f'diaginertia="{iyy:.9g} {iyy:.9g} {iyy:.9g}"/>')
-
-        alpha = cfg.mass_damping
-        k = self.fmbs.hinge_stiffness * share
-        self.hinge_damping = (self.modal_hinge_damping(lumped) if self.fmbs.hinge_damping == "modal"
-                              else self.fmbs.hinge_damping_value)
-        c = self.hinge_damping * share
-        bodies = []
-        for i in node_bodies:
-            x, y, z = pts[i]
-            bodies.append(
-                f'<body name="body_{i}" pos="{x:.9g} {y:.9g} {z:.9g}">'
-                f'<inertial pos="0 0 0" mass="{lumped[i]:.9g}" diaginertia="{floor} {floor} {floor}"/>'
-                '<joint type="slide" axis="1 0 0"/><joint type="slide" axis="0 1 0"/>'
-                '<joint type="slide" axis="0 0 1"/></body>')
-        for j, origin, before, after in hinge_bodies:
-            bodies.append(
-                f'<body name="L{j}" pos="{origin[0]:.9g} 0 {origin[2]:.9g}">{inertial(before, origin)}'
-                '<joint type="slide" axis="1 0 0"/><joint type="slide" axis="0 0 1"/>'
-                '<joint type="hinge" axis="0 -1 0"/>'
-                f'<body name="R{j}">{inertial(after, origin)}'
-                f'<joint name="hinge{j}" type="hinge" axis="0 -1 0" stiffness="{k:.9g}" '
-                f'damping="{c:.9g}"/></body></body>')
-        bodies.append(
-            f'<body name="knot" pos="{g.length:.9g} 0 {g.hole_height:.9g}">'
-            f'{inertial(knot, knot_origin)}'
-            '<joint type="slide" axis="1 0 0"/><joint type="slide" axis="0 0 1"/>'
-            '<joint type="hinge" axis="0 -1 0"/></body>')
-        verts = np.array([pts[i] - origins[owner[i]] for i in range(len(pts))])
-        xml = f"""<mujoco model="finger_fmbs">
-  <option timestep="{cfg.timestep}" integrator="discrete" solver="Newton"
-          iterations="{cfg.solver_iterations}" tolerance="{cfg.solver_tolerance:g}" gravity="0 0 0"/>
-  <worldbody>
-    {"".join(bodies)}
-  </worldbody>
-  <deformable>
-    <flex name="body" dim="3" radius="0.0002" rgba="0.93 0.93 0.88 1"
-          body="{" ".join(owner)}" vertex="{" ".join(f"{v:.9g}" for v in verts.ravel())}"
-          element="{" ".join(str(i) for i in mesh.tets.ravel())}">
-      <contact contype="0" conaffinity="0" selfcollide="none"/>
-      <elasticity young="{p.material.youngs_modulus * cfg.modulus_factor:.9g}"
-                  poisson="{p.material.poisson_ratio}" damping="{cfg.mesh_mode_damping:.9g}"/>
-    </flex>
-  </deformable>
-</mujoco>"""
-        self.model = mujoco.MjModel.from_xml_string(xml)
-        self.data = mujoco.MjData(self.model)
-        self.free = np.zeros(len(pts), dtype=bool)
-        self.free[node_bodies] = True
-        self.body_of_node = np.full(len(pts), -1)
-        for i in node_bodies:
-            self.body_of_node[i] = self.model.body(f"body_{i}").id
-        # Modal damping (MuJoCo refuses joint damping on flex bodies in the XML; as in the
-        # continuum reference it is set on the compiled model): alpha times each dof's mass,
-        # or its body's inertia for the interfaces' rotation. The hinges keep their damper.
+    def _set_modal_damping(self, alpha: float) -> None:
+        """Modal damping (MuJoCo refuses joint damping on flex bodies in the XML; as in the
+        continuum reference it is set on the compiled model): ``alpha`` [1/s] times each dof's
+        mass, or its body's inertia for the interfaces' rotation. The hinges keep their damper."""
         m = self.model
         for jnt in range(m.njnt):
             if m.jnt_type[jnt] == mujoco.mjtJoint.mjJNT_HINGE and m.jnt_stiffness[jnt] > 0:
@@ -258,17 +330,6 @@ class FmbsFinger(ReferenceFinger):
             inertia = (m.body_inertia[b, 1] if m.jnt_type[jnt] == mujoco.mjtJoint.mjJNT_HINGE
                        else m.body_mass[b])
             m.dof_damping[m.jnt_dofadr[jnt]] = alpha * inertia
-        self._hold_symmetry_plane()
-        mujoco.mj_forward(m, self.data)
-
-        # Rigid-zone body of every zone node (-1 elsewhere): the cable's equivalent forces on
-        # such nodes act on their body.
-        self.zone_body_of_node = np.full(len(pts), -1)
-        for name in set(owner[i] for i in range(len(pts))):
-            if name.startswith(("L", "R")) or name == "knot":
-                idx = [i for i in range(len(pts)) if owner[i] == name]
-                self.zone_body_of_node[idx] = self.model.body(name).id
-        self.zone_bodies = np.unique(self.zone_body_of_node[self.zone_body_of_node >= 0])
 
     def node_positions(self) -> np.ndarray:
         return self.data.flexvert_xpos.copy()

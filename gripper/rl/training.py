@@ -32,7 +32,7 @@ import json
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -40,6 +40,9 @@ from gripper.core.atomic import write_atomic
 from gripper.core.user_files import read_user_data
 from gripper.rl.config import EVAL_SEED, TrainConfig
 from gripper.rl.hyperparams import hyperparams_for
+
+if TYPE_CHECKING:
+    from gripper.rl.demo_regulariser import DemoRegulariser
 
 COLUMNS = ["steps", "wall_s", "train_episodes", "train_success", "train_return", "eval_success",
            "eval_return"]
@@ -213,12 +216,33 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False,
 def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[dict], None] | None,
            nthread: int) -> list[dict]:
     import torch
-    from stable_baselines3.common.vec_env import VecNormalize
 
     cfg = cfg.validate()
     hp = hyperparams_for(cfg.algo, cfg.hyperparams)
     out = Path(out)
-    ckpt_dir = out / "checkpoints"
+    _claim_run_folder(cfg, hp, out, resume)
+    torch.set_num_threads(1)
+    chunk = chunk_size(cfg, hp)
+    if not isinstance(nthread, int) or isinstance(nthread, bool) or not 1 <= nthread <= 64:
+        raise ValueError(f"nthread: must be an integer in [1, 64], got {nthread!r}")
+    run = _TrainingRun(cfg, hp, out, resume=resume, nthread=nthread, on_progress=on_progress)
+    try:
+        run.start_from_demonstrations()
+        while run.done_steps < cfg.steps:
+            run.train_chunk(chunk)
+        run.save_policy(out)
+    finally:
+        run.close()
+    return run.rows
+
+
+def _claim_run_folder(cfg: TrainConfig, hp: dict, out: Path, resume: bool) -> None:
+    """Check that ``out`` holds no other run (with ``resume``: a run of ``cfg``), then make it
+    and its checkpoint folder and write the config file.
+
+    Raises:
+        ValueError: a folder with another run, or with none to resume.
+    """
     cfg_path, prog_path = out / CONFIG_FILE, out / PROGRESS_FILE
     if resume:
         if not cfg_path.exists():
@@ -230,58 +254,102 @@ def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[
     elif cfg_path.exists() or prog_path.exists():
         raise ValueError(f"--out: {out} already holds a run; give --resume to continue it or another folder")
     out.mkdir(parents=True, exist_ok=True)
-    ckpt_dir.mkdir(exist_ok=True)
+    (out / "checkpoints").mkdir(exist_ok=True)
     write_atomic(cfg_path, lambda tmp: Path(tmp).write_text(json.dumps(
         {"config": cfg.to_json(), "hyperparams": hp, "versions": _versions()}, indent=2) + "\n"))
 
-    torch.set_num_threads(1)
-    chunk = chunk_size(cfg, hp)
-    if not isinstance(nthread, int) or isinstance(nthread, bool) or not 1 <= nthread <= 64:
-        raise ValueError(f"nthread: must be an integer in [1, 64], got {nthread!r}")
-    venv = _make_venv(cfg, hp, nthread)
-    norm = venv if isinstance(venv, VecNormalize) else None
-    rows: list[dict] = []
-    latest = _latest_checkpoint(ckpt_dir) if resume else None
-    if latest is not None:
-        done_steps, path = latest
-        if norm is not None:
-            stats = VecNormalize.load(str(path.with_name(path.stem + "_" + NORM_FILE)), norm.venv)
-            norm.obs_rms, norm.ret_rms = stats.obs_rms, stats.ret_rms
-        model: Any = algorithm_class(cfg.algo).load(str(path), env=venv, device="cpu")
-        if cfg.algo != "ppo":
-            model.load_replay_buffer(str(ckpt_dir / "replay_buffer.pkl"))
-        rows = [r for r in _read_progress(prog_path) if r["steps"] <= done_steps]
-    else:
-        done_steps = 0
-        model = _build(cfg, hp, venv)
-    from gripper.rl.evaluation import evaluate_policy, make_eval_env
 
-    eval_env = make_eval_env(cfg.env_kwargs(), cfg.eval_episodes, cfg.env_id(), nthread=nthread)
-    columns = COLUMNS + [f"eval_{o}" for o in sorted(set(cfg.objects))] + (
-        ["demo_steps"] if cfg.demo_episodes else [])
-    t_wall = rows[-1]["wall_s"] if rows else 0.0
-    demo_steps = int(rows[0]["demo_steps"]) if rows and cfg.demo_episodes else 0
+def _norm_path(checkpoint: Path) -> Path:
+    """The ``VecNormalize`` statistics saved with a checkpoint."""
+    return checkpoint.with_name(checkpoint.stem + "_" + NORM_FILE)
 
-    def record(row: dict[str, Any]) -> None:
-        if cfg.demo_episodes:
-            row["demo_steps"] = demo_steps
-        rows.append(row)
-        _write_progress(prog_path, rows, columns)
-        if on_progress is not None:
-            on_progress(row)
 
-    def checkpoint(steps: int) -> None:
-        path = ckpt_dir / f"step_{steps}.zip"
-        model.save(str(path))
-        if norm is not None:
-            norm.save(str(path.with_name(path.stem + "_" + NORM_FILE)))
-        if cfg.algo != "ppo":
-            model.save_replay_buffer(str(ckpt_dir / "replay_buffer.pkl"))
+def _eval_fields(ev: dict, objects: tuple[str, ...]) -> dict[str, Any]:
+    """A progress row's evaluation columns: overall success and return, success per object."""
+    return {"eval_success": ev["success"], "eval_return": ev["return"],
+            **{f"eval_{o}": ev["by_object"].get(o, float("nan")) for o in sorted(set(objects))}}
 
-    regulariser = None
-    try:
+
+class _TrainingRun:
+    """One training run in its folder: the model, its training and evaluation envs, and the
+    progress rows so far (``done_steps`` environment steps, ``t_wall`` seconds of wall time).
+
+    A new run builds the model; a resumed one loads its latest checkpoint (model, normalisation
+    statistics, replay buffer) and keeps the rows up to it.
+    """
+
+    def __init__(self, cfg: TrainConfig, hp: dict, out: Path, *, resume: bool, nthread: int,
+                 on_progress: Callable[[dict], None] | None):
+        from stable_baselines3.common.vec_env import VecNormalize
+
+        self.cfg, self.hp, self.on_progress = cfg, hp, on_progress
+        self.ckpt_dir, self.prog_path = out / "checkpoints", out / PROGRESS_FILE
+        self.venv = _make_venv(cfg, hp, nthread)
+        self.norm = self.venv if isinstance(self.venv, VecNormalize) else None
+        self.rows: list[dict] = []
+        self.latest = _latest_checkpoint(self.ckpt_dir) if resume else None
+        self.model: Any
+        if self.latest is not None:
+            self.done_steps, path = self.latest
+            self.model = self._load_checkpoint(path)
+            self.rows = [r for r in _read_progress(self.prog_path) if r["steps"] <= self.done_steps]
+        else:
+            self.done_steps = 0
+            self.model = _build(cfg, hp, self.venv)
+        from gripper.rl.evaluation import make_eval_env
+
+        self.eval_env = make_eval_env(cfg.env_kwargs(), cfg.eval_episodes, cfg.env_id(), nthread=nthread)
+        self.columns = COLUMNS + [f"eval_{o}" for o in sorted(set(cfg.objects))] + (
+            ["demo_steps"] if cfg.demo_episodes else [])
+        self.t_wall = self.rows[-1]["wall_s"] if self.rows else 0.0
+        self.demo_steps = int(self.rows[0]["demo_steps"]) if self.rows and cfg.demo_episodes else 0
+        self.regulariser: DemoRegulariser | None = None
+
+    def _load_checkpoint(self, path: Path):
+        """The model of checkpoint ``path``, its normalisation statistics put into the training
+        env and (off-policy) its replay buffer loaded."""
+        from stable_baselines3.common.vec_env import VecNormalize
+
+        if self.norm is not None:
+            stats = VecNormalize.load(str(_norm_path(path)), self.norm.venv)
+            self.norm.obs_rms, self.norm.ret_rms = stats.obs_rms, stats.ret_rms
+        model: Any = algorithm_class(self.cfg.algo).load(str(path), env=self.venv, device="cpu")
+        if self.cfg.algo != "ppo":
+            model.load_replay_buffer(str(self.ckpt_dir / "replay_buffer.pkl"))
+        return model
+
+    def record(self, row: dict[str, Any]) -> None:
+        """Append a progress row, rewrite ``progress.csv`` and report the row."""
+        if self.cfg.demo_episodes:
+            row["demo_steps"] = self.demo_steps
+        self.rows.append(row)
+        _write_progress(self.prog_path, self.rows, self.columns)
+        if self.on_progress is not None:
+            self.on_progress(row)
+
+    def checkpoint(self, steps: int) -> None:
+        """Save the model (with its normalisation statistics and, off-policy, the replay
+        buffer) as ``checkpoints/step_<steps>.zip``."""
+        path = self.ckpt_dir / f"step_{steps}.zip"
+        self.model.save(str(path))
+        if self.norm is not None:
+            self.norm.save(str(_norm_path(path)))
+        if self.cfg.algo != "ppo":
+            self.model.save_replay_buffer(str(self.ckpt_dir / "replay_buffer.pkl"))
+
+    def evaluate(self) -> dict:
+        """The deterministic policy on the evaluation episodes (unseen seeds)."""
+        from gripper.rl.evaluation import evaluate_policy
+
+        return evaluate_policy(deterministic_policy(self.model, self.norm), self.cfg.env_kwargs(),
+                               self.cfg.eval_episodes, EVAL_SEED, venv=self.eval_env)
+
+    def start_from_demonstrations(self) -> None:
+        """Collect the scripted demonstrations where the run uses them: for the PPO regulariser
+        (``bc_weight`` or ``critic_warmup``, resumed runs too) and, in a new run, to pretrain."""
+        cfg, hp = self.cfg, self.hp
         regularised = cfg.algo == "ppo" and (hp["bc_weight"] > 0 or hp["critic_warmup"] > 0)
-        if cfg.demo_episodes and (latest is None or regularised):
+        if cfg.demo_episodes and (self.latest is None or regularised):
             # the demonstrations: seeded by the run's seed, so a resumed run collects them again
             # bitwise (its regulariser draws from them)
             from gripper.rl.demonstrations import collect_demonstrations
@@ -289,72 +357,79 @@ def _train(cfg: TrainConfig, out: Path, *, resume: bool, on_progress: Callable[[
             t0 = time.perf_counter()
             demo = collect_demonstrations(cfg.env_kwargs(), cfg.demo_episodes, cfg.demo_noise, cfg.seed,
                                           n_envs=cfg.n_envs)
-            t_wall += time.perf_counter() - t0 if latest is None else 0.0
+            self.t_wall += time.perf_counter() - t0 if self.latest is None else 0.0
         if regularised:
             from gripper.rl.demo_regulariser import DemoRegulariser
 
-            regulariser = DemoRegulariser(model, demo, weight=hp["bc_weight"], decay=hp["bc_decay"],
-                                          critic_warmup=hp["critic_warmup"], seed=chunk_seed(cfg.seed, 2**31 + 1))
-        if cfg.demo_episodes and latest is None:
-            # behaviour cloning from the scripted grasp (gripper.rl.demonstrations), evaluated
-            # and checkpointed as step 0; the demonstrations' own outcome is the row's training part
-            from gripper.rl.demonstrations import fill_replay_buffer, pretrain
+            self.regulariser = DemoRegulariser(self.model, demo, weight=hp["bc_weight"], decay=hp["bc_decay"],
+                                               critic_warmup=hp["critic_warmup"],
+                                               seed=chunk_seed(cfg.seed, 2**31 + 1))
+        if cfg.demo_episodes and self.latest is None:
+            self._pretrain(demo)
 
-            t0 = time.perf_counter()
-            demo_steps = demo.steps
-            pretrain(model, demo, seed=chunk_seed(cfg.seed, 2**31))
-            if cfg.algo != "ppo":
-                fill_replay_buffer(model, demo)
-            ev = evaluate_policy(deterministic_policy(model, norm), cfg.env_kwargs(), cfg.eval_episodes,
-                                 EVAL_SEED, venv=eval_env)
-            checkpoint(0)
-            t_wall += time.perf_counter() - t0
-            ends = np.flatnonzero(demo.done)
-            starts = np.concatenate([[0], ends[:-1] + 1])
-            demo_return = float(np.mean([demo.reward[a:b + 1].sum() for a, b in zip(starts, ends, strict=True)]))
-            record({"steps": 0, "wall_s": round(t_wall, 1), "train_episodes": len(ends),
-                    "train_success": float(demo.success.mean()),
-                    "train_return": demo_return,
-                    "eval_success": ev["success"], "eval_return": ev["return"],
-                    **{f"eval_{o}": ev["by_object"].get(o, float("nan")) for o in sorted(set(cfg.objects))}})
-        while done_steps < cfg.steps:
-            t0 = time.perf_counter()
-            k = done_steps // chunk
-            s = chunk_seed(cfg.seed, k)
-            model.set_random_seed(s)  # Python, NumPy, PyTorch, the action space, the envs' seeds
-            model._last_obs = venv.reset()
-            if norm is not None:
-                model._last_original_obs = norm.get_original_obs()
-            model._last_episode_starts = np.ones(cfg.n_envs, dtype=bool)
-            log = episode_log(cfg.n_envs, final_step=cfg.goal_conditioned)
-            model.learn(chunk, reset_num_timesteps=False, callback=log, progress_bar=False)
-            done_steps = model.num_timesteps
-            _end_cut_episodes(model)
-            if norm is not None:
-                norm.training = False
+    def _pretrain(self, demo) -> None:
+        """Behaviour cloning from the scripted grasp (gripper.rl.demonstrations), evaluated
+        and checkpointed as step 0; the demonstrations' own outcome is the row's training part."""
+        from gripper.rl.demonstrations import fill_replay_buffer, pretrain
 
-            ev = evaluate_policy(deterministic_policy(model, norm), cfg.env_kwargs(), cfg.eval_episodes,
-                                 EVAL_SEED, venv=eval_env)
-            if norm is not None:
-                norm.training = True
-            checkpoint(done_steps)
-            t_wall += time.perf_counter() - t0
-            row: dict[str, Any] = {
-                "steps": done_steps, "wall_s": round(t_wall, 1), "train_episodes": len(log.done),
-                "train_success": float(np.mean([d[0] for d in log.done])) if log.done else float("nan"),
-                "train_return": float(np.mean([d[1] for d in log.done])) if log.done else float("nan"),
-                "eval_success": ev["success"], "eval_return": ev["return"],
-                **{f"eval_{o}": ev["by_object"].get(o, float("nan")) for o in sorted(set(cfg.objects))}}
-            record(row)
-        model.save(str(out / POLICY_FILE))
+        cfg = self.cfg
+        t0 = time.perf_counter()
+        self.demo_steps = demo.steps
+        pretrain(self.model, demo, seed=chunk_seed(cfg.seed, 2**31))
+        if cfg.algo != "ppo":
+            fill_replay_buffer(self.model, demo)
+        ev = self.evaluate()
+        self.checkpoint(0)
+        self.t_wall += time.perf_counter() - t0
+        ends = np.flatnonzero(demo.done)
+        starts = np.concatenate([[0], ends[:-1] + 1])
+        demo_return = float(np.mean([demo.reward[a:b + 1].sum() for a, b in zip(starts, ends, strict=True)]))
+        self.record({"steps": 0, "wall_s": round(self.t_wall, 1), "train_episodes": len(ends),
+                     "train_success": float(demo.success.mean()),
+                     "train_return": demo_return, **_eval_fields(ev, cfg.objects)})
+
+    def train_chunk(self, chunk: int) -> None:
+        """Learn ``chunk`` steps from a seeded reset, then evaluate, checkpoint and record."""
+        cfg, model, norm = self.cfg, self.model, self.norm
+        t0 = time.perf_counter()
+        k = self.done_steps // chunk
+        s = chunk_seed(cfg.seed, k)
+        model.set_random_seed(s)  # Python, NumPy, PyTorch, the action space, the envs' seeds
+        model._last_obs = self.venv.reset()
         if norm is not None:
-            norm.save(str(out / NORM_FILE))
-    finally:
-        if regulariser is not None:
-            regulariser.remove()
-        eval_env.close()
-        venv.close()
-    return rows
+            model._last_original_obs = norm.get_original_obs()
+        model._last_episode_starts = np.ones(cfg.n_envs, dtype=bool)
+        log = episode_log(cfg.n_envs, final_step=cfg.goal_conditioned)
+        model.learn(chunk, reset_num_timesteps=False, callback=log, progress_bar=False)
+        self.done_steps = model.num_timesteps
+        _end_cut_episodes(model)
+        if norm is not None:
+            norm.training = False
+
+        ev = self.evaluate()
+        if norm is not None:
+            norm.training = True
+        self.checkpoint(self.done_steps)
+        self.t_wall += time.perf_counter() - t0
+        row: dict[str, Any] = {
+            "steps": self.done_steps, "wall_s": round(self.t_wall, 1), "train_episodes": len(log.done),
+            "train_success": float(np.mean([d[0] for d in log.done])) if log.done else float("nan"),
+            "train_return": float(np.mean([d[1] for d in log.done])) if log.done else float("nan"),
+            **_eval_fields(ev, cfg.objects)}
+        self.record(row)
+
+    def save_policy(self, out: Path) -> None:
+        """The final policy (and its normalisation statistics) into the run folder."""
+        self.model.save(str(out / POLICY_FILE))
+        if self.norm is not None:
+            self.norm.save(str(out / NORM_FILE))
+
+    def close(self) -> None:
+        """Remove the regulariser's hooks and close both envs."""
+        if self.regulariser is not None:
+            self.regulariser.remove()
+        self.eval_env.close()
+        self.venv.close()
 
 
 def _run_config(path: Path) -> dict:
