@@ -30,6 +30,7 @@ from typing import Any, ClassVar, Protocol
 import mujoco
 import numpy as np
 
+from gripper.core.fields import Validated
 from gripper.core.params import ACTUATIONS, GripperParams
 from gripper.parts.names import FingerNames
 
@@ -82,7 +83,7 @@ class Drive(ABC):
     command_record: ClassVar[str] = "close_command"
     #: the settings of what the drive reports (a validated dataclass: resolution, noise), or
     #: None for a drive without any (its sensor then reads the model as it is)
-    sensing_class: ClassVar[type | None] = None
+    sensing_class: ClassVar[type[Validated] | None] = None
     #: label of the sensed effort in videos, and the factor from SI to its unit there
     effort_label: ClassVar[str]
     effort_display_scale: ClassVar[float] = 1.0

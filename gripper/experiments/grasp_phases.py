@@ -70,9 +70,15 @@ class Grasp:
         return self.stepper.d
 
     @property
+    def planned(self) -> ApproachPlan:
+        """The approach's plan (made by :class:`Approach`)."""
+        assert self.plan is not None, "the approach phase makes the plan"
+        return self.plan
+
+    @property
     def xy(self) -> tuple[float, float]:
         """The palm's place over the object, from the plan [m]."""
-        return self.plan.x, self.plan.y
+        return self.planned.x, self.planned.y
 
     def ctrl(self, command, z, x=None, y=None, yaw=None):
         """Controls over a chunk's times: the drive's ``command`` (one goal for all fingers, or
@@ -103,6 +109,7 @@ class Grasp:
 
     def check_held(self, name: str) -> None:
         """Whether the object is held at the end of phase ``name`` (height, slip since the lift)."""
+        assert self.start is not None, "the settle phase records the start"
         h = self.probe.object_pos(self.d)[2] - self.start[2]
         slip = float(np.linalg.norm(self.relative(self.d) - self.rel_lift))
         self.phase_ok[name] = (is_held(h, slip, self.proto), h, slip)
@@ -299,6 +306,7 @@ def run_phases(stepper, p, obj, proto, probe, rec, sensor, eye) -> dict:
 def outcome(g: Grasp) -> dict[str, Any]:
     """Success (held after the lift, the hold and the shake, and not damaged), where it failed,
     and what the grasp measured."""
+    plan = g.planned
     damaged = g.obj.is_damaged(g.result["damage_measure"])
     failed = next((name for name in ("lift", "hold", "shake") if not g.phase_ok[name][0]), None)
     if failed is None and damaged:
@@ -310,7 +318,7 @@ def outcome(g: Grasp) -> dict[str, Any]:
         "policy": g.proto.policy,
         "drive": {**g.drive.command_outcome(g.grip, g.close_command),
                   "at_grasp": g.sensed["grasp"], "at_hold_end": g.sensed["hold"]},
-        "grasp": g.plan.grasp, "palm_xy_m": [g.plan.x, g.plan.y], "wrist_yaw_rad": g.plan.yaw, "pose": g.plan.pose,
+        "grasp": plan.grasp, "palm_xy_m": [plan.x, plan.y], "wrist_yaw_rad": plan.yaw, "pose": plan.pose,
         "depth_estimate": g.estimate.to_dict() if g.estimate is not None else None,
     }
     if g.grip is not None:

@@ -48,13 +48,19 @@ PERMANENT_DENT = Criterion("permanent dent depth after spring-back [m]", DAMAGE_
 
 
 class Placed(Protocol):
-    """Where a trial puts the object (``gripper.objects.scene_objects.Placement``)."""
+    """Where a trial puts the object (``gripper.objects.scene_objects.Placement``): its
+    offset [m], yaw [rad], and the scales of its mass and friction [-]."""
 
-    x: float
-    y: float
-    yaw: float
-    mass_scale: float
-    friction_scale: float
+    @property
+    def x(self) -> float: ...
+    @property
+    def y(self) -> float: ...
+    @property
+    def yaw(self) -> float: ...
+    @property
+    def mass_scale(self) -> float: ...
+    @property
+    def friction_scale(self) -> float: ...
 
 
 class ObjectKind:
