@@ -38,6 +38,7 @@ from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import parse_user_data, read_user_text
 from gripper.drives import drive_class, drive_for
 from gripper.experiments.protocol import GraspProtocol
+from gripper.objects.kinds import registered_kinds
 from gripper.objects.envelope_objects import SHAPES
 from gripper.references.pneumatic_params import PneumaticActuator
 
@@ -648,8 +649,9 @@ def _mesh_points(value, responses: dict) -> tuple[int, int, int]:
                 dataclasses.replace(obj, mesh_points=pts).validate()
                 meshed += 1
     if not meshed:
-        raise ValueError("object.mesh_points: the responses grasp no deformable object (balloon, paper_box, bag, "
-                         "...) whose mesh it could set")
+        deformable = ", ".join(k.name for k in registered_kinds().values() if k.deformable)
+        raise ValueError(f"object.mesh_points: the responses grasp no deformable object (a {deformable}) "
+                         "whose mesh it could set")
     return pts
 
 
