@@ -38,8 +38,8 @@ from gripper.core.resources import STUDIES_DIR
 from gripper.core.user_files import parse_user_data, read_user_text
 from gripper.drives import drive_class, drive_for
 from gripper.experiments.protocol import GraspProtocol
-from gripper.objects.kinds import registered_kinds
 from gripper.objects.envelope_objects import SHAPES
+from gripper.objects.kinds import registered_kinds
 from gripper.references.pneumatic_params import PneumaticActuator
 
 DESIGNS = ("one_at_a_time", "factorial", "latin_hypercube")
