@@ -13,6 +13,12 @@ Three artefacts per gripper (cable and pneumatic), each through the public entry
 
 Run: .venv/bin/python scripts/fingerprint.py --out runs/fingerprint [--json FILE]
 
+A hash says only whether anything changed. ``--compare OLD NEW`` says what: the two runs' folders
+(``--out`` of two versions) compared record by record, the records of either schema read
+through :func:`gripper.experiments.record.upgrade_record`: every outcome (status, success,
+failed phase, damage, grasp, pose) must be equal and every number within ``--rtol`` (0.1 %);
+each other difference is listed with its size, and the study results row by row the same way.
+
 An older source tree runs with ``PYTHONPATH=<its checkout>`` (its command is run as
 ``python -m``, flat ``gripper.cli`` or layered ``gripper.cli.main``).
 """
@@ -22,6 +28,7 @@ import csv
 import hashlib
 import importlib.util
 import json
+import math
 import subprocess
 import sys
 import tempfile
@@ -116,11 +123,73 @@ def study_hash(out: Path, study: str) -> str:
     return hashlib.sha256(json.dumps(rows, sort_keys=True).encode()).hexdigest()
 
 
+def _flatten(value, key: str = "") -> dict[str, object]:
+    """Nested dicts and lists as {dotted.key: leaf}."""
+    if isinstance(value, dict):
+        return {k: v for name, sub in value.items() for k, v in _flatten(sub, f"{key}.{name}" if key else name).items()}
+    if isinstance(value, list):
+        return {k: v for i, sub in enumerate(value) for k, v in _flatten(sub, f"{key}[{i}]").items()}
+    return {key: value}
+
+
+def _differences(old: dict, new: dict, rtol: float) -> list[str]:
+    """What differs between two flattened rows: numbers beyond ``rtol``, anything else (the
+    outcomes: status, success, failed phase, damage, grasp, pose) at all, keys present in one only."""
+    out = []
+    for key in sorted(set(old) | set(new)):
+        a, b = old.get(key, "<absent>"), new.get(key, "<absent>")
+        numbers = all(isinstance(v, int | float) and not isinstance(v, bool) for v in (a, b))
+        if numbers:
+            if not math.isclose(a, b, rel_tol=rtol, abs_tol=1e-12):
+                out.append(f"{key}: {a!r} -> {b!r} ({(b - a) / a:+.2%})" if a else f"{key}: {a!r} -> {b!r}")
+        elif a != b:
+            out.append(f"{key}: {a!r} -> {b!r}")
+    return out
+
+
+def compare(old_dir: Path, new_dir: Path, rtol: float) -> int:
+    """Print what differs between two fingerprint folders; return the number of differences."""
+    from gripper.experiments.record import upgrade_record
+
+    skip = {*NOT_PHYSICS, "config_hash"}
+    n = 0
+    for actuation in ("cable", "pneumatic"):
+        recs = []
+        for folder in (old_dir, new_dir):
+            rows = [upgrade_record(json.loads(line))
+                    for line in (folder / f"bench_{actuation}" / "trials.jsonl").read_text().splitlines() if line]
+            recs.append({r["trial_id"]: _flatten({k: v for k, v in r.items() if k not in skip}) for r in rows})
+        for tid in sorted(set(recs[0]) | set(recs[1])):
+            diffs = _differences(recs[0].get(tid, {}), recs[1].get(tid, {}), rtol)
+            n += len(diffs)
+            for line in diffs:
+                print(f"{actuation} bench {tid}: {line}")
+        tables = []
+        for folder in (old_dir, new_dir):
+            with open(folder / f"study_{actuation}" / "results.csv", newline="") as f:
+                tables.append({(r["point"], r["metric"]): r for r in csv.DictReader(f)})
+        for key in sorted(set(tables[0]) | set(tables[1])):
+            a, b = ({k: float(v) if k == "value" and v else v for k, v in t.get(key, {}).items()} for t in tables)
+            diffs = _differences(a, b, rtol)
+            n += len(diffs)
+            for line in diffs:
+                print(f"{actuation} study point {key[0]} {key[1]}: {line}")
+    print(f"{n} differences beyond {rtol:.1%} or in an outcome")
+    return n
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", type=Path, required=True, help="a new folder for the runs")
+    ap.add_argument("--out", type=Path, help="a new folder for the runs")
     ap.add_argument("--json", type=Path, help="also write the hashes here")
+    ap.add_argument("--compare", type=Path, nargs=2, metavar=("OLD", "NEW"),
+                    help="compare two --out folders instead of running")
+    ap.add_argument("--rtol", type=float, default=1e-3, help="relative tolerance of --compare (0.1 %%)")
     args = ap.parse_args()
+    if args.compare:
+        sys.exit(1 if compare(*args.compare, args.rtol) else 0)
+    if args.out is None:
+        ap.error("--out is required (or --compare OLD NEW)")
     args.out = args.out.resolve()
     args.out.mkdir(parents=True, exist_ok=False)
     result = {}

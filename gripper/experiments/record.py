@@ -16,7 +16,7 @@ table: ``error`` says what it saw; neither a success nor a failure).
 Example:
     >>> from gripper.experiments.record import TrialRecord
     >>> sorted(TrialRecord.json_schema()["required"])[:3]
-    ['config_hash', 'failed_phase', 'index']
+    ['config_hash', 'drive', 'failed_phase']
 """
 
 from __future__ import annotations
