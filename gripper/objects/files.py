@@ -171,7 +171,7 @@ def _common_fields(read: _Reader, obj: dict, kind: ObjectKind) -> dict[str, Any]
     mass = read(obj, "object", "mass", "number")
     density = read(obj, "object", "density", "number")
     takes_density = not kind.deformable
-    if (mass is None) == (density is None) and not (kind.name == "mesh" and mass is None and density is None):
+    if (mass is None) == (density is None) and not (kind.sized_by_mesh and mass is None and density is None):
         raise read.fail("object.mass", "give exactly one of mass [kg] or density [kg/m³]")
     if density is not None and not takes_density:
         raise read.fail("object.density", f"a {kind.name} takes its mass, not a density")
@@ -180,7 +180,7 @@ def _common_fields(read: _Reader, obj: dict, kind: ObjectKind) -> dict[str, Any]
     close = read(obj, "object", "close_command", "number", default=None if kind.deformable else RIGID_CLOSE,
                  required=kind.deformable)
     size = None
-    if kind.name != "mesh":
+    if not kind.sized_by_mesh:
         if "mesh" in obj:
             raise read.fail("object.mesh", f"only kind = \"mesh\" takes a mesh, this is a {kind.name}")
         size = read(obj, "object", "size", "size", required=True)
@@ -225,7 +225,7 @@ def _damage_and_material(read: _Reader, dmg: dict, mat: dict, kind: ObjectKind) 
 def _build(read: _Reader, obj: dict, kind: ObjectKind, fields: dict[str, Any], base: Path) -> GraspObject:
     """The object: from its mesh file (kind ``mesh``), else from its size."""
     mass, density, size = fields.pop("mass"), fields.pop("density"), fields.pop("size")
-    if kind.name == "mesh":
+    if kind.sized_by_mesh:
         mesh_name = read(obj, "object", "mesh", "text", required=True)
         if "size" in obj:
             raise read.fail("object.size", "a mesh takes its size from the mesh; remove size")

@@ -6,9 +6,8 @@ from __future__ import annotations
 
 import mujoco
 
-from gripper.objects.kinds.base import CONTENTS_BODY, OBJECT_BODY
+from gripper.objects.kinds.base import CONTENTS_BODY, OBJECT_BODY, object_friction
 from gripper.objects.kinds.flex import BAG_DAMPING, PE_POISSON, FilmKind, flex_contact, stiff_against_film
-from gripper.objects.kinds.rigid import object_friction
 
 # The bag's film mass and the rigid pack inside it (gripper/data/objects/bag_pack.toml: 3 g of
 # film, a 36 × 36 × 44 mm pack of 80 g).

@@ -3,9 +3,8 @@ change far more than shape change), damaged when its membrane's edge strain pass
 
 from __future__ import annotations
 
-from gripper.objects.kinds.base import OBJECT_BODY
+from gripper.objects.kinds.base import OBJECT_BODY, object_friction
 from gripper.objects.kinds.flex import FilmKind, flex_contact
-from gripper.objects.kinds.rigid import object_friction
 
 # Balloon mesh: flexcomp ellipsoid with mesh_points surface points per axis (5: 99 vertices) on a
 # trilinear 2 × 2 × 2 cell grid (81 dofs): enough for local dents under each finger; 5 points is

@@ -63,6 +63,12 @@ class Placed(Protocol):
     def friction_scale(self) -> float: ...
 
 
+def object_friction(obj: Any, place: Placed) -> list[float]:
+    """MuJoCo's (sliding, torsional, rolling) friction of the object at ``place``: the
+    silicone-object pair's sliding coefficient, scaled as the trial samples it."""
+    return [obj.friction * place.friction_scale, 0.005, 1e-4]
+
+
 class ObjectKind:
     """One kind of grasp object. Subclass, set the class attributes, implement :meth:`build`
     (and what differs from the defaults), and register an instance with
@@ -84,6 +90,7 @@ class ObjectKind:
             interpolated flex): trials compile it canonically (``gripper.sim.canonical``).
         file_tables: the object-file tables this kind reads beyond the common ones, with
             their keys (read by :meth:`read_tables`).
+        sized_by_mesh: an object file gives its mesh (``object.mesh``), not its size.
     """
 
     name: ClassVar[str] = ""
@@ -98,6 +105,7 @@ class ObjectKind:
     reads_strain: ClassVar[bool] = False
     history_dependent: ClassVar[bool] = False
     file_tables: ClassVar[dict[str, tuple[str, ...]]] = {}
+    sized_by_mesh: ClassVar[bool] = False
 
     # -- shape ----------------------------------------------------------------------------
     def half_width(self, obj: Any) -> float:

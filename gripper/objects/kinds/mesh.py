@@ -51,6 +51,7 @@ def load_mesh(path: str | Path, *, repair: bool = True):
 class MeshPart(RigidKind):
     name = "mesh"
     square_footprint = True
+    sized_by_mesh = True
 
     def half_width(self, obj):
         return obj.footprint_radius if obj.footprint_radius > 0 else super().half_width(obj)

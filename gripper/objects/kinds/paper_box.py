@@ -13,9 +13,8 @@ from typing import ClassVar
 import mujoco
 import numpy as np
 
-from gripper.objects.kinds.base import PERMANENT_DENT, Criterion
+from gripper.objects.kinds.base import PERMANENT_DENT, Criterion, object_friction
 from gripper.objects.kinds.flex import DeformableKind, shell_flex
-from gripper.objects.kinds.rigid import object_friction
 
 # Rayleigh damping time [s] of the card: damps the shell's high modes at the 1 ms step.
 PAPER_BOX_DAMPING = 0.001

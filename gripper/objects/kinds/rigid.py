@@ -11,7 +11,7 @@ from typing import Any
 
 import mujoco
 
-from gripper.objects.kinds.base import OBJECT_BODY, ObjectKind, Placed
+from gripper.objects.kinds.base import OBJECT_BODY, ObjectKind, object_friction
 
 # A rigid part's contact when the fingers carry compliant pads (gripper.parts.pads): near-rigid,
 # so the pads' springs, in N/m, carry the indentation. A contact's static stiffness is
@@ -23,11 +23,6 @@ from gripper.objects.kinds.base import OBJECT_BODY, ObjectKind, Placed
 RIGID_CONTACT_SOLREF = (0.004, 1.0)
 RIGID_CONTACT_SOLIMP = (0.999, 0.999, 0.001, 0.5, 2.0)
 RIGID_RGBA = (0.2, 0.5, 0.8, 1.0)
-
-
-def object_friction(obj: Any, place: Placed) -> list[float]:
-    """MuJoCo's (sliding, torsional, rolling) friction of the object at ``place``."""
-    return [obj.friction * place.friction_scale, 0.005, 1e-4]
 
 
 class RigidKind(ObjectKind):

@@ -9,9 +9,8 @@ import math
 import mujoco
 
 from gripper.core.ranges import OBJECT_HALF_EXTENT, OBJECT_MASS
-from gripper.objects.kinds.base import CONTENTS_BODY
+from gripper.objects.kinds.base import CONTENTS_BODY, object_friction
 from gripper.objects.kinds.flex import BAG_DAMPING, PE_POISSON, FilmKind, shell_flex, stiff_against_film
-from gripper.objects.kinds.rigid import object_friction
 
 # A zipper bag's contents lie in one layer on the bag's floor, in a grid, this far from the film
 # and from each other [m] (the film's contact radius plus a margin).
