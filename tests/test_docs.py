@@ -45,8 +45,8 @@ def test_readme_defaults_are_the_codes():
     from gripper.envs.registration import ENV_ID
     from gripper.experiments.protocol import GraspProtocol
 
-    assert f"({GraspProtocol().grip_tension:g} N per cable)" in README
-    assert f"({GraspProtocol().grip_pressure / 1e3:g} kPa per chamber)" in README
+    assert f"at {GraspProtocol().grip_tension:g} N per cable" in README
+    assert f"at {GraspProtocol().grip_pressure / 1e3:g} kPa per chamber" in README
     assert f"{DEFAULT_TRIALS} trials on each default object" in README
     assert set(re.findall(r"SoftGripperGrasp-v\d+", README)) == {ENV_ID.split(":")[-1]}
 
