@@ -145,3 +145,20 @@ def test_the_grep_sees_a_kind_test():
     for line in ('if obj.kind == "paper_box":', "if s.obj.kind in STRAIN_DAMAGE_KINDS:",
                  'if self.probe.obj.kind not in X:', "kinds = ('rigid_box', 'mesh')"):
         assert KIND_TESTS.search(line), line
+
+
+def test_a_kind_that_declares_what_the_objects_lack_is_refused_at_registration():
+    class Porous(UprightCapsule):
+        name = "test_porous"
+        material_fields = ("porosity",)
+
+    class Unsure(UprightCapsule):
+        name = "test_unsure"
+        own_criterion = "bruise_energy"
+
+    with pytest.raises(ValueError, match="material fields porosity unknown; allowed: youngs_modulus"):
+        register_object_kind(Porous())
+    with pytest.raises(ValueError, match="own_criterion 'bruise_energy' is not one of its criteria"):
+        register_object_kind(Unsure())
+    with pytest.raises(ValueError, match="object.ampoule.kind: must be one of"):
+        _capsule(kind="test_porous")  # neither was registered

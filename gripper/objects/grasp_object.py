@@ -21,17 +21,12 @@ from dataclasses import dataclass
 from gripper.core.fields import Validated, check_safe_name
 from gripper.core.ranges import (
     CLOSE_COMMAND,
-    FILM_THICKNESS,
     FRICTION,
     OBJECT_HALF_EXTENT,
     OBJECT_MASS,
-    OBJECT_MODULUS,
-    YIELD_STRAIN,
 )
 from gripper.objects.kinds import ObjectKind, object_kind, registered_kinds
-
-# The ranges of the material fields a kind may need (ObjectKind.material_fields).
-MATERIAL_RANGES = {"youngs_modulus": OBJECT_MODULUS, "thickness": FILM_THICKNESS, "yield_strain": YIELD_STRAIN}
+from gripper.objects.kinds.base import MATERIAL_RANGES
 
 MESH_SPEC_MAX = 255  # characters of a ``mesh:PATH[::MASS]`` name, a file system's name limit
 

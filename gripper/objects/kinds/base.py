@@ -20,7 +20,7 @@ from typing import Any, ClassVar, Protocol
 
 import mujoco
 
-from gripper.core.ranges import DAMAGE_LIMIT, Range
+from gripper.core.ranges import DAMAGE_LIMIT, FILM_THICKNESS, OBJECT_MODULUS, YIELD_STRAIN, Range
 
 OBJECT_BODY = "object"  # the object's body (rigid kinds) or flex (deformable kinds)
 CONTENTS_BODY = "object_contents"  # the body, or prefix of the bodies, of what a bag holds
@@ -39,6 +39,10 @@ class Criterion:
     measure: str
     limit: Range | None
 
+
+# The material fields a kind may need (ObjectKind.material_fields: GraspObject fields), with
+# their ranges.
+MATERIAL_RANGES = {"youngs_modulus": OBJECT_MODULUS, "thickness": FILM_THICKNESS, "yield_strain": YIELD_STRAIN}
 
 CONTACT_FORCE = Criterion("peak total contact force [N]", DAMAGE_LIMIT["contact_force"])
 NOT_DAMAGED = Criterion("not damaged by grasping", None)
@@ -161,6 +165,12 @@ def register_object_kind(kind: ObjectKind) -> ObjectKind:
         raise ValueError(f"object kind: an ObjectKind instance with an identifier name, got {kind!r}")
     if not kind.criteria:
         raise ValueError(f"object kind {kind.name}: declares no damage criterion")
+    unknown = [f for f in kind.material_fields if f not in MATERIAL_RANGES]
+    if unknown:
+        raise ValueError(f"object kind {kind.name}: material fields {', '.join(unknown)} unknown; "
+                         f"allowed: {', '.join(MATERIAL_RANGES)}")
+    if kind.own_criterion is not None and kind.own_criterion not in kind.criteria:
+        raise ValueError(f"object kind {kind.name}: own_criterion {kind.own_criterion!r} is not one of its criteria")
     _KINDS[kind.name] = kind
     return kind
 
