@@ -274,7 +274,7 @@ def test_a_velocity_grasp_succeeds_and_the_episode_runs_on():
     obs, _ = env.reset(seed=0)
     u, h = env.unwrapped, env.observation_structure["palm_height"][0]
     grasp = env.config.params.finger.length + 0.008
-    close = u.servo_action(3.0)
+    close = u.command_action(3.0)
     held_at, terminated = None, False
     for k in range(300):
         if obs[h] > grasp + 0.001 and held_at is None and k < 60:

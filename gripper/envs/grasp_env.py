@@ -117,7 +117,7 @@ class SoftGripperGraspEnv(gym.Env):
     ``action_mode="synergy"``), then the palm's lift (and its x and y with ``xy_actions``). By
     default each entry is a velocity that moves its actuator's set-point, which is observed, and
     0 holds it (``servo_control``, ``palm_control``). ``lift_action(height)``,
-    ``servo_action(angle)`` and ``xy_action(offset)`` give the position-mode value for a palm
+    ``command_action(command)`` and ``xy_action(offset)`` give the position-mode value for a palm
     height [m], a drive command (a servo's spool angle [rad], a regulator's pressure [Pa]) or a
     palm x/y offset [m].
 
@@ -205,10 +205,14 @@ class SoftGripperGraspEnv(gym.Env):
         """Action value (x or y, with ``xy_actions``) that sets the palm ``offset`` from home [m]."""
         return self._scene_for_actions().xy_action(offset)
 
-    def servo_action(self, angle: float) -> float:
+    def command_action(self, command: float) -> float:
         """Action value (a finger's, in position mode) that sets the drive's command to
-        ``angle``: a servo's spool angle [rad], a pneumatic regulator's pressure [Pa]."""
-        return self._scene_for_actions().command_action(angle)
+        ``command``: a servo's spool angle [rad], a pneumatic regulator's pressure [Pa]."""
+        return self._scene_for_actions().command_action(command)
+
+    def servo_action(self, angle: float) -> float:
+        """:meth:`command_action` under its earlier name (kept for existing callers)."""
+        return self.command_action(angle)
 
     def _scene_for_actions(self):
         if self._ep is not None:
