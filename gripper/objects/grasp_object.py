@@ -52,8 +52,8 @@ class GraspObject(Validated):
         mass: total mass [kg].
         friction: sliding friction coefficient against the silicone pads [-].
         yaw_symmetric: True where yaw does not change the grasp (no yaw is sampled).
-        close_command: servo closing set-point [rad of spool angle] (the object-specific
-            closing command of the protocol).
+        close_command: the object's own closing command under the per-object policy, in the
+            drive's command unit (a cable servo's spool angle [rad]).
         damage: the damage criterion, one its kind allows (``ObjectKind.criteria``): the
             built-in kinds have ``strain``, ``dent``, ``contact_force`` and ``none``.
         damage_limit: threshold of the criterion's measure above which the object is damaged.
