@@ -9,6 +9,7 @@ import numpy as np
 
 from gripper.core.params import GripperParams
 from gripper.drives import drive_for
+from gripper.experiments.approach import check_fits_opening
 from gripper.experiments.protocol import PULL_MAX, PULL_RATE, PULL_SLIP, GraspProtocol
 from gripper.experiments.trial import run_protocol
 from gripper.objects.grasp_object import GraspObject
@@ -36,6 +37,7 @@ def run_pullout(obj: str | GraspObject, *, params: GripperParams | None = None,
     proto = (protocol or GraspProtocol()).validate()
     p = (params or GripperParams()).validate()
     p = trial_params(p, proto.timestep).validate()
+    check_fits_opening(obj, p)
     for name, v in (("rate", rate), ("max_force", max_force), ("slip", slip)):
         if not (math.isfinite(v) and v > 0):
             raise ValueError(f"pullout.{name}: must be > 0, got {v!r}")

@@ -42,6 +42,7 @@ def add(sub) -> None:
 
 
 def run(args) -> int:
+    from gripper.experiments.approach import check_fits_opening
     from gripper.objects.library import get_object
     from gripper.render.video import VIDEO_SUFFIXES, record_trial_video
 
@@ -50,7 +51,7 @@ def run(args) -> int:
         check_output_file(args.still, "--still", (".png",))
     params = design(args)
     proto, noise = protocol_and_noise(args, params)
-    obj = get_object(object_specs(args.object, "--object")[0])
+    obj = check_fits_opening(get_object(object_specs(args.object, "--object")[0]), params)
     res = record_trial_video(obj, args.out, seed=args.seed, index=args.index, params=params,
                              protocol=proto, noise=noise, width=args.width, height=args.height, fps=args.fps,
                              camera=args.camera, overlay=not args.no_overlay, still=args.still,
