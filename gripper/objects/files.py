@@ -48,9 +48,9 @@ from typing import Any
 from gripper.core.fields import check_safe_name
 from gripper.core.ranges import OBJECT_DENSITY
 from gripper.core.user_files import read_user_data
-from gripper.objects.grasp_object import MATERIAL_RANGES, GraspObject
+from gripper.objects.grasp_object import GraspObject
 from gripper.objects.kinds import ObjectKind, object_kind, registered_kinds
-from gripper.objects.kinds.base import RIGID_CLOSE
+from gripper.objects.kinds.base import MATERIAL_RANGES, RIGID_CLOSE
 from gripper.objects.kinds.flex import MESH_POINTS_RANGE
 from gripper.objects.mesh_objects import mesh_object
 

@@ -161,7 +161,7 @@ class CableDrive(Drive):
         return (x1 - x0) * width
 
     def sensor(self, m, rng=None, sensing=None) -> ServoSensor:
-        return ServoSensor(m, self.params, sensing if sensing is not None else ServoSensing(), rng)
+        return ServoSensor(m, self.params, self.trial_sensing(sensing), rng)
 
     def effort_sensors(self, m):
         adr = np.array([m.sensor_adr[m.sensor(f"{finger_name(k)}_cable_tension").id]
